@@ -1,0 +1,50 @@
+#pragma once
+// Counter-based random numbers (Random123's Philox4x32-10, Salmon et al. SC'11).
+//
+// Every random decision in the project is a pure function of a key and a counter, so the
+// value does not depend on which thread, rank or order computes it (DESIGN.md section 5).
+// The key holds the 64-bit global seed; the counter holds (stream, frame, pixel or item,
+// sample) and a block index that advances as draws are consumed.
+#include <Random123/philox.h>
+
+#include <cstdint>
+
+namespace inet {
+
+/// Named stream ids so that two stages never draw the same numbers for the same seed.
+enum class RngStream : uint32_t { PathTracer = 1, Trajectory = 2, Layout = 3, Sensor = 4 };
+
+class CounterRng {
+public:
+  /// seed: global seed; stream: which consumer; a, b, c: its indices (frame, pixel, sample).
+  CounterRng(uint64_t seed, RngStream stream, uint32_t a, uint32_t b, uint32_t c)
+      : key_{{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32)}},
+        ctr_{{a, b, c, static_cast<uint32_t>(stream) << 24}} {}
+
+  /// Next 32 uniformly distributed bits.
+  uint32_t nextU32() {
+    if (used_ == 4) refill();
+    return out_.v[used_++];
+  }
+  /// Uniform float in [0, 1): the 24 high bits, so 1.0 is never returned.
+  float uniform() { return static_cast<float>(nextU32() >> 8) * 0x1p-24f; }
+  /// Uniform double in [0, 1) from 53 bits.
+  double uniformDouble() {
+    uint64_t hi = nextU32(), lo = nextU32();
+    return static_cast<double>(((hi << 32) | lo) >> 11) * 0x1p-53;
+  }
+
+private:
+  void refill() {
+    out_ = philox_(ctr_, key_);
+    ++ctr_.v[3];  // the low 24 bits of word 3 count blocks within one stream
+    used_ = 0;
+  }
+  r123::Philox4x32 philox_;
+  r123::Philox4x32::key_type key_;
+  r123::Philox4x32::ctr_type ctr_;
+  r123::Philox4x32::ctr_type out_{};
+  int used_ = 4;
+};
+
+}  // namespace inet

@@ -1,0 +1,45 @@
+#pragma once
+// One rendered frame: linear RGB and every ground-truth channel, all width x height, all from the
+// same primary rays. A pixel that sees nothing has depth 0, normal (0,0,0), label 0, instance 0.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace inet {
+
+/// The channels a frame can carry. Ground truth passes are exact (never filtered): they come
+/// from the ray through the pixel centre.
+enum class Pass : uint32_t {
+  Rgb = 1u << 0,       ///< linear RGB radiance, path traced, 3 x float
+  DepthZ = 1u << 1,    ///< z-depth along the optical axis, metres, 1 x float
+  DepthRay = 1u << 2,  ///< Euclidean distance camera centre -> surface (paper's depth), metres
+  Normal = 1u << 3,    ///< unit surface normal in the camera frame, facing the camera, 3 x float
+  Label = 1u << 4,     ///< NYU40 class id, 1 x uint8
+  Instance = 1u << 5,  ///< instance id, 1 x uint16
+  Albedo = 1u << 6,    ///< linear diffuse reflectance ("pure texture"), 3 x float
+};
+using PassMask = uint32_t;
+constexpr PassMask kAllPasses = 0x7f;
+constexpr PassMask kGroundTruthPasses = kAllPasses & ~static_cast<PassMask>(Pass::Rgb);
+inline bool has(PassMask m, Pass p) { return (m & static_cast<PassMask>(p)) != 0; }
+
+/// Name of a pass as used on the command line ("rgb", "depth", "ray_depth", "normal", "label",
+/// "instance", "albedo").
+std::string passName(Pass p);
+/// Parses "rgb,depth,..." or "all" into a mask; throws InputError(where, "--passes", ...).
+PassMask parsePassList(const std::string& list, const std::string& where);
+
+struct Frame {
+  PassMask passes = 0;
+  ImageF rgb;          ///< 3 channels
+  ImageF depth_z;      ///< 1 channel
+  ImageF depth_ray;    ///< 1 channel
+  ImageF normal;       ///< 3 channels
+  ImageU8 label;       ///< 1 channel, NYU40
+  ImageU16 instance;   ///< 1 channel
+  ImageF albedo;       ///< 3 channels
+};
+
+}  // namespace inet

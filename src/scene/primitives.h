@@ -1,0 +1,24 @@
+#pragma once
+// Built-in parametric meshes, all centred at the origin in a unit-sized box so that an object's
+// transform carries its real size:
+//   box       unit cube [-0.5, 0.5]^3, 12 triangles, outward winding
+//   cylinder  radius 0.5, height 1 along z, centred; param "segments" (3..256, default 24)
+//   quad      unit square [-0.5, 0.5]^2 in the z = 0 plane, geometric normal +z
+//   sphere    analytic sphere (not tessellated); param "radius" (> 0, default 0.5)
+#include <map>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace inet {
+
+/// Names accepted by makePrimitive, for error messages.
+const std::vector<std::string>& primitiveNames();
+
+/// Builds the primitive `name` with `params`. Unknown names or parameters and out-of-range values
+/// throw InputError(where, field, ...), where `field` names the offending key.
+Mesh makePrimitive(const std::string& name, const std::map<std::string, double>& params,
+                   const std::string& where, const std::string& field);
+
+}  // namespace inet

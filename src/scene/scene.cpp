@@ -1,0 +1,92 @@
+#include "scene/scene.h"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace inet {
+
+int Scene::findMesh(const std::string& id) const {
+  for (size_t i = 0; i < meshes.size(); ++i)
+    if (meshes[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+int Scene::findMaterial(const std::string& id) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+std::pair<Vec3, Vec3> Scene::bounds() const {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const auto& o : objects) {
+    const Mesh& m = meshes[o.mesh];
+    auto grow = [&](const Vec3& p) {
+      Vec3 w = (o.T_world_object * p.homogeneous()).head<3>();
+      lo = lo.cwiseMin(w);
+      hi = hi.cwiseMax(w);
+    };
+    if (m.isSphere()) {
+      double r = m.sphere_radius;
+      for (int c = 0; c < 8; ++c)
+        grow(Vec3((c & 1) ? r : -r, (c & 2) ? r : -r, (c & 4) ? r : -r));
+    } else {
+      for (const auto& p : m.positions) grow(p.cast<double>());
+    }
+  }
+  return {lo, hi};
+}
+
+size_t Scene::triangleCount() const {
+  size_t n = 0;
+  for (const auto& o : objects) n += meshes[o.mesh].triangles.size();
+  return n;
+}
+
+void Scene::validate(const std::string& where) const {
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const Mesh& m = meshes[i];
+    std::string field = fmt::format("meshes[{}] ('{}')", i, m.id);
+    if (!m.isSphere() && m.triangles.empty())
+      throw InputError(where, field, "mesh has no triangles");
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        if (t[k] >= m.positions.size())
+          throw InputError(where, field, "triangle index out of range");
+    for (const auto& p : m.positions)
+      if (!p.allFinite()) throw InputError(where, field, "non-finite vertex position");
+  }
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const Object& o = objects[i];
+    std::string field = fmt::format("objects[{}] ('{}')", i, o.name);
+    if (o.mesh < 0 || o.mesh >= static_cast<int>(meshes.size()))
+      throw InputError(where, field + ".mesh", "no such mesh");
+    if (o.material < 0 || o.material >= static_cast<int>(materials.size()))
+      throw InputError(where, field + ".material", "no such material");
+    if (o.nyu40 < 0 || o.nyu40 > 40)
+      throw InputError(where, field + ".nyu40", fmt::format("{} is not an NYU40 id (0..40)", o.nyu40));
+    if (o.instance < 1 || o.instance > 65535)
+      throw InputError(where, field + ".instance", fmt::format("{} is outside 1..65535", o.instance));
+    if (!o.T_world_object.allFinite())
+      throw InputError(where, field + ".transform", "non-finite value");
+    if (o.T_world_object.row(3) != Eigen::RowVector4d(0, 0, 0, 1))
+      throw InputError(where, field + ".transform", "last row must be 0 0 0 1");
+    double det = o.T_world_object.block<3, 3>(0, 0).determinant();
+    if (!(det > 1e-12))
+      throw InputError(where, field + ".transform",
+                       "linear part must have a positive determinant (no zero, negative or mirror scale)");
+  }
+  for (const auto& m : materials) {
+    if (!m.albedo.allFinite() || m.albedo.minCoeff() < 0 || m.albedo.maxCoeff() > 1)
+      throw InputError(where, "materials['" + m.id + "'].albedo", "each channel must be in [0, 1]");
+    if (!m.emission.allFinite() || m.emission.minCoeff() < 0)
+      throw InputError(where, "materials['" + m.id + "'].emission", "must be finite and >= 0");
+  }
+}
+
+}  // namespace inet
