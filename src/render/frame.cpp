@@ -1,1 +1,56 @@
-// (being written)
+#include "render/frame.h"
+
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace inet {
+namespace {
+struct PassEntry {
+  Pass pass;
+  const char* name;
+};
+constexpr PassEntry kPasses[] = {
+    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},   {Pass::DepthRay, "ray_depth"},
+    {Pass::Normal, "normal"}, {Pass::Label, "label"},    {Pass::Instance, "instance"},
+    {Pass::Albedo, "albedo"},
+};
+}  // namespace
+
+std::string passName(Pass p) {
+  for (const auto& e : kPasses)
+    if (e.pass == p) return e.name;
+  return "?";
+}
+
+PassMask parsePassList(const std::string& list, const std::string& where) {
+  PassMask mask = 0;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    if (item == "all") {
+      mask |= kAllPasses;
+      continue;
+    }
+    bool found = false;
+    for (const auto& e : kPasses) {
+      if (item == e.name) {
+        mask |= static_cast<PassMask>(e.pass);
+        found = true;
+      }
+    }
+    if (!found) {
+      std::vector<std::string> names;
+      for (const auto& e : kPasses) names.emplace_back(e.name);
+      throw InputError(where, "--passes",
+                       fmt::format("unknown pass '{}' (valid: all, {})", item, fmt::join(names, ", ")));
+    }
+  }
+  if (mask == 0) throw InputError(where, "--passes", "no pass selected");
+  return mask;
+}
+
+}  // namespace inet

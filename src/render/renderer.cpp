@@ -1,1 +1,38 @@
-// (being written)
+#include "render/renderer.h"
+
+#include "render/embree_scene.h"
+#include "render/gt_passes.h"
+
+namespace inet {
+
+Renderer::Renderer(const Scene& scene, const std::string& integrator)
+    : integrator_(makeIntegrator(integrator, "render options")) {
+  scene_ = std::make_unique<EmbreeScene>(scene);
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::render(const CameraIntrinsics& K, const Pose& T_world_camera,
+                      const RenderOptions& options, uint32_t frame_index, Frame& frame) const {
+  inet::renderGroundTruth(*scene_, K, T_world_camera, options.passes, frame);
+  if (has(options.passes, Pass::Rgb)) {
+    if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
+      frame.rgb = ImageF(K.width, K.height, 3);
+    RenderContext ctx{*scene_, K, T_world_camera, options, frame_index};
+    integrator_->render(ctx, frame.rgb);
+    frame.passes |= static_cast<PassMask>(Pass::Rgb);
+  } else {
+    frame.rgb = {};
+    frame.passes &= ~static_cast<PassMask>(Pass::Rgb);
+  }
+}
+
+void Renderer::renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_camera,
+                                 PassMask passes, Frame& frame) const {
+  inet::renderGroundTruth(*scene_, K, T_world_camera, passes, frame);
+}
+
+double Renderer::sceneBuildMs() const { return scene_->buildMs(); }
+size_t Renderer::emissiveTriangleCount() const { return scene_->lights().size(); }
+
+}  // namespace inet

@@ -1,0 +1,21 @@
+#pragma once
+// Ground-truth passes from one ray through each pixel centre, traced in coherent 16-wide packets
+// (4x4 pixel blocks; Embree's rtcIntersect16). Exact by construction: no filtering, no jitter.
+//   depth    z-depth (metres along the optical axis) = the ray parameter, since the camera-frame
+//            direction has z = 1
+//   ray_depth Euclidean distance from the camera centre (the InteriorNet paper's depth)
+//   normal   unit geometric normal in the camera frame, flipped to face the camera
+//   label    NYU40 class; instance: instance id; albedo: linear diffuse reflectance
+#include "core/pose.h"
+#include "render/camera.h"
+#include "render/embree_scene.h"
+#include "render/frame.h"
+
+namespace inet {
+
+/// Fills the ground-truth images of `frame` selected by `passes` (the RGB bit is ignored).
+/// Images are (re)allocated to the camera size. Runs in parallel over tiles (TBB).
+void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
+                       const Pose& T_world_camera, PassMask passes, Frame& frame);
+
+}  // namespace inet

@@ -1,0 +1,55 @@
+#pragma once
+// The integrator interface (how the RGB pass is computed) and its registry. Issue 3 grows the
+// path tracer behind this interface; a new integrator is one .cpp plus one line in
+// integrator.cpp's table.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/pose.h"
+#include "render/camera.h"
+#include "render/frame.h"
+
+namespace inet {
+
+class EmbreeScene;
+
+/// Everything that controls how a frame is rendered. Part of a dataset's provenance.
+struct RenderOptions {
+  int spp = 16;              ///< samples per pixel for the RGB pass
+  int max_bounces = 8;       ///< scattering events per path (1 = direct light only)
+  uint64_t seed = 0;         ///< global seed of the counter-based RNG
+  PassMask passes = kAllPasses;
+  std::string integrator = "path";
+};
+
+/// The inputs of one frame's render.
+struct RenderContext {
+  const EmbreeScene& scene;
+  const CameraIntrinsics& K;
+  const Pose& T_world_camera;
+  const RenderOptions& options;
+  uint32_t frame_index;  ///< keys the RNG, so each frame gets its own independent samples
+};
+
+class Integrator {
+public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  /// Renders linear RGB radiance into `rgb` (3 channels, camera size, already allocated).
+  /// Must be deterministic for a given context, whatever the thread count.
+  virtual void render(const RenderContext& ctx, ImageF& rgb) const = 0;
+};
+
+/// Names of the registered integrators.
+std::vector<std::string> integratorNames();
+/// Creates a registered integrator; throws InputError(where, "--integrator", ...) listing the
+/// valid names for an unknown one.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const std::string& where);
+
+/// Factory of the unidirectional path tracer (path_tracer.cpp).
+std::unique_ptr<Integrator> makePathTracer();
+
+}  // namespace inet

@@ -1,0 +1,37 @@
+#pragma once
+// The render stage's public face: build once per scene, then render frames (RGB by the chosen
+// integrator, ground-truth passes from the same camera). Downstream stages see only Frames.
+#include <memory>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/integrator.h"
+#include "scene/scene.h"
+
+namespace inet {
+
+class EmbreeScene;
+
+class Renderer {
+public:
+  /// Builds the acceleration structure; throws InputError for an unknown integrator name.
+  Renderer(const Scene& scene, const std::string& integrator = "path");
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Renders the passes in options.passes into `frame` (buffers are reused across calls).
+  void render(const CameraIntrinsics& K, const Pose& T_world_camera, const RenderOptions& options,
+              uint32_t frame_index, Frame& frame) const;
+  /// Only the ground-truth passes (cheap: one coherent ray per pixel).
+  void renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_camera, PassMask passes,
+                         Frame& frame) const;
+  double sceneBuildMs() const;
+  size_t emissiveTriangleCount() const;
+
+private:
+  std::unique_ptr<EmbreeScene> scene_;
+  std::unique_ptr<Integrator> integrator_;
+};
+
+}  // namespace inet
