@@ -1,0 +1,95 @@
+// interiornet render: one image of a scene from a camera.json, for comparisons with other
+// renderers (../shared/bench) and for looking at a scene.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "common.h"
+#include "core/error.h"
+#include "dataset/image_encode.h"
+#include "dataset/image_io.h"
+#include "render/renderer.h"
+#include "trajectory/builtin_trajectory.h"
+
+namespace inet::app {
+namespace {
+
+struct RenderArgs {
+  SceneArgs scene;
+  std::string camera;
+  int spp = 16;
+  int max_bounces = 8;
+  uint64_t seed = 0;
+  int threads = 0;
+  std::string pass = "rgb";
+  std::string out;
+};
+
+void runRender(const RenderArgs& a) {
+  std::filesystem::path out(a.out);
+  std::string ext = out.extension().string();
+  if (ext != ".png" && ext != ".exr") throw InputError(a.out, "--out", "must end in .png (sRGB 8-bit) or .exr (linear float)");
+  if (a.spp < 1) throw InputError("", "--spp", "must be >= 1");
+  if (a.max_bounces < 0) throw InputError("", "--max-bounces", "must be >= 0");
+  PassMask pass = parsePassList(a.pass, "render");
+  if (__builtin_popcount(pass) != 1) throw InputError("", "--pass", "name exactly one pass");
+  CameraFile cam;
+  if (!a.camera.empty()) {
+    cam = loadCameraJson(a.camera);
+  } else if (a.scene.isDefault()) {
+    cam.T_world_camera = builtinTrajectory(1, 25.0).poses[0].T_world_camera;
+  } else {
+    throw InputError("", "--camera", "required with --scene/--layout");
+  }
+  ThreadLimit limit(a.threads);
+  Scene scene = a.scene.load();
+  Renderer renderer(scene);
+  RenderOptions opt;
+  opt.spp = a.spp;
+  opt.max_bounces = a.max_bounces;
+  opt.seed = a.seed;
+  opt.passes = pass;
+  Frame f;
+  renderer.render(cam.intrinsics, cam.T_world_camera, opt, 0, f);
+  ImageF img;
+  if (has(pass, Pass::Rgb)) img = f.rgb;
+  else if (has(pass, Pass::Albedo)) img = f.albedo;
+  else if (has(pass, Pass::Normal)) img = f.normal;
+  else if (has(pass, Pass::DepthZ)) img = f.depth_z;
+  else if (has(pass, Pass::DepthRay)) img = f.depth_ray;
+  else throw InputError("", "--pass", "label/instance images: use 'generate' (integer PNGs)");
+  if (ext == ".exr") {
+    std::vector<std::string> names = img.channels == 3 ? std::vector<std::string>{"R", "G", "B"}
+                                                       : std::vector<std::string>{"Z"};
+    writeExr(out, img, names);
+  } else if (img.channels == 3 && !has(pass, Pass::Normal)) {
+    writePng(out, encodeSrgb8(img));
+  } else if (has(pass, Pass::Normal)) {
+    writePng(out, encodeNormal16(img));
+  } else {
+    writePng(out, encodeDepth16(img, 1000.0));
+  }
+  fmt::print("wrote {} ({}x{}, {} spp)\n", a.out, img.width, img.height, a.spp);
+}
+
+}  // namespace
+
+void registerRender(CLI::App& app) {
+  auto* cmd = app.add_subcommand("render", "Render one image of a scene from a camera.json");
+  auto a = std::make_shared<RenderArgs>();
+  a->scene.addTo(*cmd);
+  cmd->add_option("--camera", a->camera,
+                  "camera.json (width, height, fx, fy, cx, cy with pixel centres at +0.5, and "
+                  "position/look_at/up or cam_to_world); default: the built-in room's first pose");
+  cmd->add_option("--spp", a->spp, "samples per pixel (default 16)");
+  cmd->add_option("--max-bounces", a->max_bounces, "maximum scattering events per path (default 8)");
+  cmd->add_option("--seed", a->seed, "random seed (default 0)");
+  cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
+  cmd->add_option("--pass", a->pass, "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
+  cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")->required();
+  cmd->callback([a] { runRender(*a); });
+}
+
+}  // namespace inet::app

@@ -1,0 +1,47 @@
+#pragma once
+// Shared pieces of the command line: options every subcommand understands and scene loading.
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace inet::app {
+
+/// How a scene argument is interpreted: a layout.json, or a mesh file (OBJ/glTF/PLY...) imported
+/// with Assimp; empty path = the built-in default scene.
+struct SceneArgs {
+  std::string path;
+  std::string up = "z";
+  double scale = 1.0;
+  std::string labels;
+  /// Adds --layout/--scene, --up, --scale, --labels to `cmd`.
+  void addTo(CLI::App& cmd);
+  /// Loads the scene; prints the importer's warning summary once. Throws InputError.
+  Scene load() const;
+  bool isDefault() const { return path.empty(); }
+};
+
+/// Limits TBB to n threads for the life of the object (n = 0: all cores).
+class ThreadLimit {
+public:
+  explicit ThreadLimit(int n);
+  ~ThreadLimit();
+  int threads() const { return threads_; }
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int threads_;
+};
+
+/// Version string of this build.
+const char* version();
+
+void registerGenerate(CLI::App& app);
+void registerRender(CLI::App& app);
+void registerLayout(CLI::App& app);
+void registerBench(CLI::App& app);
+
+}  // namespace inet::app
