@@ -40,6 +40,8 @@ struct GenerateArgs {
   std::string sequence = "seq_000";
   std::string out = "out";
   bool progress = true;
+  CameraIntrinsics K;
+  bool cx_set = false, cy_set = false;
 };
 
 std::vector<std::string> splitList(const std::string& s) {
@@ -101,7 +103,10 @@ void runGenerate(const GenerateArgs& a) {
   // Load and check every input before anything is written.
   Scene scene = a.scene.load();
   Trajectory traj = loadTrajectory(a);
-  CameraIntrinsics K;
+  CameraIntrinsics K = a.K;
+  if (!a.cx_set) K.cx = K.width / 2.0;
+  if (!a.cy_set) K.cy = K.height / 2.0;
+  K.validate("generate");
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
@@ -141,8 +146,8 @@ void runGenerate(const GenerateArgs& a) {
     }
     bar.update(static_cast<int64_t>(++done));
   }
-  writer.finish();
   bar.finish();
+  writer.finish();
   std::printf("wrote %zu frames to %s\n", traj.size(), dir.string().c_str());
 }
 
@@ -167,6 +172,16 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0); never changes the output");
   cmd->add_option("--passes", a->passes, "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, or all (default all)");
   cmd->add_option("--format", a->formats, "comma list of output layouts: asl, tum (default asl,tum)");
+  cmd->add_option("--width", a->K.width, "image width in pixels (default 640)");
+  cmd->add_option("--height", a->K.height, "image height in pixels (default 480)");
+  cmd->add_option("--fx", a->K.fx, "focal length in pixels (default 600)");
+  cmd->add_option("--fy", a->K.fy, "focal length in pixels (default 600)");
+  cmd->add_option("--cx", a->K.cx,
+                  "principal point with pixel (i,j) centred at (i+0.5, j+0.5) (default width/2; "
+                  "files for SLAM tools state cx-0.5, the OpenCV convention)")
+      ->each([a](const std::string&) { a->cx_set = true; });
+  cmd->add_option("--cy", a->K.cy, "principal point, as --cx (default height/2)")
+      ->each([a](const std::string&) { a->cy_set = true; });
   cmd->add_option("--sequence", a->sequence, "sequence folder name (default seq_000)");
   cmd->add_option("--out", a->out, "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");

@@ -40,6 +40,8 @@ void ProgressBar::update(int64_t done) {
 
 void ProgressBar::finish() {
   if (!enabled_) return;
+  // a non-terminal log already has the line for 100%
+  if (!tty_ && last_decile_ == 10 && done_ == total_) return;
   draw(true);
 }
 
