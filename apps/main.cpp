@@ -15,6 +15,12 @@ int main(int argc, char** argv) {
       "Run 'interiornet generate' for a 25-frame sequence of the built-in room, or "
       "'interiornet SUBCOMMAND --help' for details."};
   app.require_subcommand(1);
+  // a repeated option takes its last value, as in most command lines (scripts append overrides)
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  // one-line errors, like every other error of the tool
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("error: ") + e.what() + " (see --help)\n";
+  });
   app.set_version_flag("--version", inet::app::version());
   inet::app::registerGenerate(app);
   inet::app::registerRender(app);
