@@ -1,1 +1,349 @@
-// (being written)
+#include "scene/assimp_importer.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "scene/label_map.h"
+#include "scene/nyu40.h"
+
+namespace fs = std::filesystem;
+
+namespace inet {
+namespace {
+
+// Triangulate so every polygon becomes triangles; join identical vertices so shared corners are
+// shared indices. No normal generation (the renderer uses flat geometric normals) and nothing
+// that pre-transforms, merges or reorders meshes across nodes (object identity must survive).
+constexpr unsigned kImportFlags =
+    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+
+std::string oneLine(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+Mat4 toEigen(const aiMatrix4x4& m) {
+  Mat4 out;
+  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
+      m.d3, m.d4;
+  return out;
+}
+
+/// C = scale * R_up: file coordinates -> world (metres, Z up).
+Mat4 fileToWorld(double scale, char up) {
+  Mat4 c = Mat4::Identity();
+  if (up == 'y') {  // x -> x, y -> z, z -> -y
+    c.block<3, 3>(0, 0) << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  }
+  c.block<3, 3>(0, 0) *= scale;
+  return c;
+}
+
+void checkAxes(double scale, char up, const std::string& file, const std::string& field) {
+  if (!(std::isfinite(scale) && scale > 0))
+    throw InputError(file, field, fmt::format("scale must be a finite number > 0, got {}", scale));
+  if (up != 'y' && up != 'z')
+    throw InputError(file, field, fmt::format("up axis must be 'y' or 'z', got '{}'", up));
+}
+
+/// Reads `path` with Assimp. The importer owns the returned scene.
+std::unique_ptr<Assimp::Importer> readFile(const std::string& path, const std::string& where_file,
+                                           const std::string& where_field) {
+  const bool self = (where_file == path);  // errors about the file itself need not repeat it
+  const std::string what = self ? std::string() : fmt::format("'{}': ", path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(where_file, where_field, what + "file not found");
+  if (fs::is_directory(path, ec))
+    throw InputError(where_file, where_field, what + "is a folder, expected a mesh file");
+  auto importer = std::make_unique<Assimp::Importer>();
+  const aiScene* scene = importer->ReadFile(path, kImportFlags);
+  if (!scene || !scene->mRootNode)
+    throw InputError(where_file, where_field,
+                     what + "cannot import: " + oneLine(importer->GetErrorString()));
+  if (scene->mNumMeshes == 0)
+    throw InputError(where_file, where_field, what + "the file contains no meshes");
+  return importer;
+}
+
+/// Calls visit(node, T_file_node) for every node, parents first, children in file order.
+void walkNodes(const aiNode* node, const Mat4& T_parent,
+               const std::function<void(const aiNode*, const Mat4&)>& visit) {
+  Mat4 T = T_parent * toEigen(node->mTransformation);
+  visit(node, T);
+  for (unsigned c = 0; c < node->mNumChildren; ++c) walkNodes(node->mChildren[c], T, visit);
+}
+
+/// Appends the triangles of `in` with positions mapped by `M` (winding flipped when M mirrors).
+/// Only vertices used by a triangle are copied. Returns the number of non-triangle faces dropped.
+size_t appendTriangles(const aiMesh* in, const Mat4& M, Mesh& out) {
+  const bool flip = M.block<3, 3>(0, 0).determinant() < 0;
+  std::vector<int64_t> remap(in->mNumVertices, -1);
+  size_t dropped = 0;
+  for (unsigned f = 0; f < in->mNumFaces; ++f) {
+    const aiFace& face = in->mFaces[f];
+    if (face.mNumIndices != 3) {
+      ++dropped;
+      continue;
+    }
+    Tri tri;
+    for (int k = 0; k < 3; ++k) {
+      unsigned v = face.mIndices[k];
+      if (remap[v] < 0) {
+        remap[v] = static_cast<int64_t>(out.positions.size());
+        const aiVector3D& p = in->mVertices[v];
+        Vec3 w = (M * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
+        out.positions.push_back(w.cast<float>());
+      }
+      tri[k] = static_cast<uint32_t>(remap[v]);
+    }
+    if (flip) std::swap(tri[1], tri[2]);
+    out.triangles.push_back(tri);
+  }
+  return dropped;
+}
+
+size_t countTriangles(const aiMesh* m) {
+  size_t n = 0;
+  for (unsigned f = 0; f < m->mNumFaces; ++f) n += (m->mFaces[f].mNumIndices == 3);
+  return n;
+}
+
+std::string uniqueId(std::string base, std::set<std::string>& used) {
+  if (base.empty()) base = "unnamed";
+  std::string id = base;
+  for (int k = 2; used.count(id); ++k) id = fmt::format("{}_{}", base, k);
+  used.insert(id);
+  return id;
+}
+
+Vec3f readColor(const aiMaterial* m, const char* key, unsigned type, unsigned index,
+                const Vec3f& fallback) {
+  aiColor3D c;
+  if (m->Get(key, type, index, c) != AI_SUCCESS) return fallback;
+  return Vec3f(c.r, c.g, c.b);
+}
+
+/// Lambertian material from an Assimp material: diffuse colour (clamped to [0, 1]) and emissive
+/// colour (negative parts clamped to 0). Both are taken as linear RGB, as OBJ Kd/Ke and glTF are.
+Material convertMaterial(const aiMaterial* in, std::set<std::string>& used_ids,
+                         ImportReport& report) {
+  Material mat;
+  aiString name;
+  in->Get(AI_MATKEY_NAME, name);
+  mat.id = uniqueId(name.C_Str(), used_ids);
+  Vec3f albedo = readColor(in, AI_MATKEY_COLOR_DIFFUSE, mat.albedo);
+  Vec3f emission = readColor(in, AI_MATKEY_COLOR_EMISSIVE, mat.emission);
+  if (!albedo.allFinite()) albedo = Material().albedo;
+  if (!emission.allFinite()) emission.setZero();
+  if (albedo.minCoeff() < 0.f || albedo.maxCoeff() > 1.f) ++report.clamped_materials;
+  mat.albedo = albedo.cwiseMax(0.f).cwiseMin(1.f);
+  mat.emission = emission.cwiseMax(0.f);
+  return mat;
+}
+
+/// Builds the object-space mesh of aiMesh `index`, or returns -1 when it has no triangles.
+int addSharedMesh(const aiScene* ai, unsigned index, const Mat4& C, Scene& scene,
+                  std::set<std::string>& used_ids, ImportReport& report) {
+  const aiMesh* in = ai->mMeshes[index];
+  Mesh mesh;
+  report.dropped_faces += appendTriangles(in, C, mesh);
+  if (mesh.triangles.empty()) return -1;
+  mesh.id = uniqueId(in->mName.C_Str(), used_ids);
+  mesh.source.kind = MeshSource::Kind::Inline;
+  scene.meshes.push_back(std::move(mesh));
+  return static_cast<int>(scene.meshes.size()) - 1;
+}
+
+/// Node transforms are conjugated into world axes; a transform that is not a proper rigid or
+/// similarity map (mirror, degenerate, projective) cannot share the mesh, so that instance is
+/// baked into its own mesh with an identity transform.
+bool canShare(const Mat4& T_world) {
+  return T_world.allFinite() && T_world.row(3) == Eigen::RowVector4d(0, 0, 0, 1) &&
+         T_world.block<3, 3>(0, 0).determinant() > 1e-12;
+}
+
+int resolveLabel(const LabelMap& labels, const std::string& name, int default_id,
+                 ImportReport& report, std::set<std::string>& unmatched_seen) {
+  if (auto id = labels.lookup(name)) return *id;
+  ++report.unmatched_objects;
+  if (unmatched_seen.insert(name).second) report.unmatched_names.push_back(name);
+  return default_id;
+}
+
+
+/// T_world = C T_file C^-1 for C = scale * R_up, computed exactly: R_up is a signed permutation,
+/// so the rotation part is only permuted and the translation only scaled.
+Mat4 fileTransformToWorld(const Mat4& T_file, double scale, char up) {
+  const Mat3 R = fileToWorld(1.0, up).block<3, 3>(0, 0);
+  Mat4 T = T_file;
+  T.block<3, 3>(0, 0) = R * T_file.block<3, 3>(0, 0) * R.transpose();
+  T.block<3, 1>(0, 3) = scale * (R * T_file.block<3, 1>(0, 3));
+  return T;
+}
+
+/// Turns (node, aiMesh) pairs into Objects, sharing meshes and materials as it goes.
+struct SceneBuilder {
+  SceneBuilder(const aiScene* ai, const std::string& path, const ImportOptions& opt,
+               const LabelMap& labels, int default_id)
+      : ai(ai), path(path), opt(opt), labels(labels), default_id(default_id),
+        C(fileToWorld(opt.scale, opt.up)), shared_mesh(ai->mNumMeshes, -2),
+        material_of(ai->mNumMaterials, -1) {}
+
+  void addNode(const aiNode* node, const Mat4& T_file) {
+    const Mat4 T_world = fileTransformToWorld(T_file, opt.scale, opt.up);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const unsigned mi = node->mMeshes[k];
+      const aiMesh* in = ai->mMeshes[mi];
+      if (countTriangles(in) == 0) {
+        report.dropped_faces += in->mNumFaces;
+        continue;
+      }
+      Object obj;
+      obj.name = node->mName.length ? node->mName.C_Str() : in->mName.C_Str();
+      if (obj.name.empty()) obj.name = "object";
+      if (canShare(T_world)) {
+        if (shared_mesh[mi] == -2) shared_mesh[mi] = addSharedMesh(ai, mi, C, scene, mesh_ids, report);
+        obj.mesh = shared_mesh[mi];
+        obj.T_world_object = T_world;
+      } else {
+        Mesh baked;
+        report.dropped_faces += appendTriangles(in, C * T_file, baked);
+        baked.id = uniqueId(obj.name, mesh_ids);
+        scene.meshes.push_back(std::move(baked));
+        obj.mesh = static_cast<int>(scene.meshes.size()) - 1;
+      }
+      obj.material = materialIndex(in->mMaterialIndex);
+      obj.nyu40 = resolveLabel(labels, obj.name, default_id, report, unmatched_seen);
+      auto it = instance_of.emplace(obj.name, static_cast<int>(instance_of.size()) + 1).first;
+      if (it->second > 65535)
+        throw InputError(path, obj.name, "more than 65535 distinct object names (instance ids)");
+      obj.instance = it->second;
+      scene.objects.push_back(std::move(obj));
+    }
+  }
+
+  int materialIndex(unsigned ai_index) {
+    int& mat = material_of[ai_index];
+    if (mat < 0) {
+      scene.materials.push_back(convertMaterial(ai->mMaterials[ai_index], material_ids, report));
+      mat = static_cast<int>(scene.materials.size()) - 1;
+    }
+    return mat;
+  }
+
+  const aiScene* ai;
+  const std::string& path;
+  const ImportOptions& opt;
+  const LabelMap& labels;
+  const int default_id;
+  const Mat4 C;
+  std::vector<int> shared_mesh;  ///< per aiMesh: -2 = not built yet, -1 = no triangles
+  std::vector<int> material_of;  ///< per aiMaterial: index in scene.materials or -1
+  std::set<std::string> mesh_ids, material_ids, unmatched_seen;
+  std::map<std::string, int> instance_of;
+  Scene scene;
+  ImportReport report;
+};
+
+}  // namespace
+
+std::string ImportReport::summary(const std::string& default_category) const {
+  std::vector<std::string> parts;
+  if (unmatched_objects > 0) {
+    std::string names;
+    const size_t shown = std::min<size_t>(unmatched_names.size(), 10);
+    for (size_t i = 0; i < shown; ++i) names += (i ? ", " : "") + unmatched_names[i];
+    if (unmatched_names.size() > shown)
+      names += fmt::format(", ... ({} more)", unmatched_names.size() - shown);
+    parts.push_back(fmt::format(
+        "{} object(s) ({} distinct name(s)) matched no label and were labelled '{}': {}",
+        unmatched_objects, unmatched_names.size(), default_category, names));
+  }
+  if (dropped_faces > 0)
+    parts.push_back(fmt::format("{} non-triangle face(s) (lines or points) were skipped",
+                                dropped_faces));
+  if (clamped_materials > 0)
+    parts.push_back(fmt::format(
+        "{} material(s) had a diffuse colour outside [0, 1] and were clamped", clamped_materials));
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
+  return out;
+}
+
+Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportReport* report_out) {
+  checkAxes(opt.scale, opt.up, path, "import options");
+  auto default_id = nyu40FromName(opt.default_category);
+  if (!default_id)
+    throw InputError(path, "default_category",
+                     fmt::format("unknown NYU40 class '{}' (valid: {})", opt.default_category,
+                                 nyu40NameList()));
+  const LabelMap labels = opt.label_map.empty() ? LabelMap() : LabelMap::load(opt.label_map);
+  auto importer = readFile(path, path, "");
+  SceneBuilder builder(importer->GetScene(), path, opt, labels, *default_id);
+  walkNodes(importer->GetScene()->mRootNode, Mat4::Identity(),
+            [&](const aiNode* node, const Mat4& T_file) { builder.addNode(node, T_file); });
+  Scene& scene = builder.scene;
+  scene.name = fs::path(path).stem().string();
+  if (scene.objects.empty())
+    throw InputError(path, "", "the file contains no triangles (only lines or points?)");
+  builder.report.objects = scene.objects.size();
+  scene.validate(path);
+  if (report_out) *report_out = std::move(builder.report);
+  return std::move(scene);
+}
+
+Mesh loadMeshFile(const std::string& path, double scale, char up, const std::string& mesh_name,
+                  const std::string& where_file, const std::string& where_field) {
+  checkAxes(scale, up, where_file, where_field);
+  auto importer = readFile(path, where_file, where_field);
+  const aiScene* ai = importer->GetScene();
+  const Mat4 C = fileToWorld(scale, up);
+  Mesh mesh;
+  std::vector<std::string> names;  // for the "no such part" message
+  bool matched = false;
+  walkNodes(ai->mRootNode, Mat4::Identity(), [&](const aiNode* node, const Mat4& T_file) {
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh* in = ai->mMeshes[node->mMeshes[k]];
+      const std::string node_name = node->mName.C_Str(), part_name = in->mName.C_Str();
+      if (!mesh_name.empty() && node_name != mesh_name && part_name != mesh_name) {
+        if (names.empty() || names.back() != node_name) names.push_back(node_name);
+        continue;
+      }
+      matched = true;
+      appendTriangles(in, C * T_file, mesh);
+    }
+  });
+  const std::string what = where_file == path ? std::string() : fmt::format("'{}': ", path);
+  if (!matched) {
+    std::string list;
+    for (size_t i = 0; i < names.size() && i < 20; ++i) list += (i ? ", " : "") + names[i];
+    if (names.size() > 20) list += fmt::format(", ... ({} more)", names.size() - 20);
+    throw InputError(where_file, where_field,
+                     fmt::format("{}no node or mesh named '{}' (available: {})", what, mesh_name,
+                                 list));
+  }
+  if (mesh.triangles.empty())
+    throw InputError(where_file, where_field, what + "contains no triangles");
+  mesh.id = mesh_name.empty() ? fs::path(path).stem().string() : mesh_name;
+  mesh.source.kind = MeshSource::Kind::File;
+  mesh.source.file = path;
+  mesh.source.scale = scale;
+  mesh.source.up = up;
+  mesh.source.mesh_name = mesh_name;
+  return mesh;
+}
+
+}  // namespace inet

@@ -1,1 +1,587 @@
-// (being written)
+#include "scene/layout_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "scene/assimp_importer.h"
+#include "scene/label_map.h"
+#include "scene/nyu40.h"
+#include "scene/primitives.h"
+
+namespace fs = std::filesystem;
+
+namespace inet {
+namespace {
+
+using json = nlohmann::json;
+using Keys = std::vector<std::string>;
+
+std::string join(const Keys& keys) {
+  std::string out;
+  for (size_t i = 0; i < keys.size(); ++i) out += (i ? ", " : "") + keys[i];
+  return out;
+}
+
+std::string dot(const std::string& base, const std::string& key) {
+  return base.empty() ? key : base + "." + key;
+}
+
+std::string at(const std::string& base, size_t i) { return fmt::format("{}[{}]", base, i); }
+
+/// "string \"abc\"": a JSON value's type and (shortened) text, for messages.
+std::string describe(const json& j) {
+  std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return std::string(j.type_name()) + " " + text;
+}
+
+/// Typed access to parsed JSON; every failure names the file and the field path.
+class Reader {
+public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw InputError(file_, field, problem);
+  }
+
+  /// `j` must be an object holding every `required` key and no key outside required + optional.
+  void object(const json& j, const std::string& field, const Keys& required,
+              const Keys& optional) const {
+    if (!j.is_object()) fail(field, "expected an object, got " + describe(j));
+    for (const auto& item : j.items()) {
+      const std::string& key = item.key();
+      if (std::find(required.begin(), required.end(), key) == required.end() &&
+          std::find(optional.begin(), optional.end(), key) == optional.end()) {
+        Keys all = required;
+        all.insert(all.end(), optional.begin(), optional.end());
+        fail(dot(field, key), "unknown key (valid keys here: " + join(all) + ")");
+      }
+    }
+    for (const auto& key : required)
+      if (!j.contains(key)) fail(dot(field, key), "missing required key");
+  }
+
+  const json& array(const json& j, const std::string& field) const {
+    if (!j.is_array()) fail(field, "expected an array, got " + describe(j));
+    return j;
+  }
+
+  std::string string(const json& j, const std::string& field) const {
+    if (!j.is_string()) fail(field, "expected a string, got " + describe(j));
+    std::string s = j.get<std::string>();
+    if (s.empty()) fail(field, "must not be empty");
+    return s;
+  }
+
+  double number(const json& j, const std::string& field) const {
+    if (!j.is_number()) fail(field, "expected a number, got " + describe(j));
+    double v = j.get<double>();
+    if (!std::isfinite(v)) fail(field, "must be a finite number");
+    return v;
+  }
+
+  float single(const json& j, const std::string& field) const {
+    double v = number(j, field);
+    if (!std::isfinite(static_cast<float>(v)))
+      fail(field, fmt::format("{} is outside the single-precision range", v));
+    return static_cast<float>(v);
+  }
+
+  int integer(const json& j, const std::string& field, int lo, int hi) const {
+    if (!j.is_number_integer()) fail(field, "expected an integer, got " + describe(j));
+    // non-negative integers parse as unsigned and may exceed int64_t
+    bool in_range = j.is_number_unsigned()
+                        ? (j.get<uint64_t>() <= static_cast<uint64_t>(hi) &&
+                           static_cast<int64_t>(j.get<uint64_t>()) >= lo)
+                        : (j.get<int64_t>() >= lo && j.get<int64_t>() <= hi);
+    if (!in_range) fail(field, fmt::format("{} is outside {}..{}", j.dump(), lo, hi));
+    return static_cast<int>(j.get<int64_t>());
+  }
+
+  const json& fixedArray(const json& j, const std::string& field, size_t n) const {
+    if (!j.is_array() || j.size() != n)
+      fail(field, fmt::format("expected an array of {} numbers, got {}", n, describe(j)));
+    return j;
+  }
+
+  Vec3 vec3(const json& j, const std::string& field) const {
+    fixedArray(j, field, 3);
+    return Vec3(number(j[0], at(field, 0)), number(j[1], at(field, 1)), number(j[2], at(field, 2)));
+  }
+
+  Vec3f vec3f(const json& j, const std::string& field) const {
+    fixedArray(j, field, 3);
+    return Vec3f(single(j[0], at(field, 0)), single(j[1], at(field, 1)),
+                 single(j[2], at(field, 2)));
+  }
+
+private:
+  std::string file_;
+};
+
+/// Text to JSON, with syntax errors located by line and column and duplicate keys rejected
+/// (nlohmann would silently keep the last one).
+json parseText(const std::string& text, const std::string& file) {
+  std::vector<std::set<std::string>> open_objects;
+  json::parser_callback_t on_event = [&](int, json::parse_event_t event, json& value) {
+    if (event == json::parse_event_t::object_start) {
+      open_objects.emplace_back();
+    } else if (event == json::parse_event_t::object_end) {
+      open_objects.pop_back();
+    } else if (event == json::parse_event_t::key && !open_objects.empty()) {
+      const std::string key = value.get<std::string>();
+      if (!open_objects.back().insert(key).second)
+        throw InputError(file, key, "duplicate key in one JSON object");
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, on_event);
+  } catch (const json::parse_error& e) {
+    // e.byte is the 1-based index of the last character read; locate it ourselves.
+    size_t pos = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    size_t line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n');
+    size_t line_start = pos == 0 ? std::string::npos : text.rfind('\n', pos - 1);
+    size_t column = line_start == std::string::npos ? pos + 1 : pos - line_start;
+    std::string reason = e.what();
+    if (size_t c = reason.find("column "); c != std::string::npos) {
+      if (size_t colon = reason.find(": ", c); colon != std::string::npos)
+        reason = reason.substr(colon + 2);
+    }
+    throw InputError(file, fmt::format("line {}, column {}", line, column),
+                     "invalid JSON: " + reason);
+  } catch (const json::exception& e) {
+    std::string reason = e.what();
+    if (size_t b = reason.find("] "); b != std::string::npos) reason = reason.substr(b + 2);
+    throw InputError(file, "", "invalid JSON: " + reason);
+  }
+}
+
+Mesh parsePrimitive(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"id", "primitive"}, {"params"});
+  const std::string name = r.string(j["primitive"], dot(field, "primitive"));
+  const auto& names = primitiveNames();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    r.fail(dot(field, "primitive"),
+           fmt::format("unknown primitive '{}' (valid: {})", name, join(names)));
+  std::map<std::string, double> params;
+  if (j.contains("params")) {
+    const json& p = j["params"];
+    if (!p.is_object()) r.fail(dot(field, "params"), "expected an object, got " + describe(p));
+    for (const auto& item : p.items())
+      params[item.key()] = r.number(item.value(), dot(dot(field, "params"), item.key()));
+  }
+  return makePrimitive(name, params, r.file(), dot(field, "params"));
+}
+
+Mesh parseFileMesh(const Reader& r, const json& j, const std::string& field,
+                   const fs::path& base_dir) {
+  r.object(j, field, {"id", "file"}, {"scale", "up", "mesh_name"});
+  const std::string file = r.string(j["file"], dot(field, "file"));
+  double scale = 1.0;
+  if (j.contains("scale")) {
+    scale = r.number(j["scale"], dot(field, "scale"));
+    if (!(scale > 0)) r.fail(dot(field, "scale"), "must be > 0 (metres per file unit)");
+  }
+  char up = 'z';
+  if (j.contains("up")) {
+    const std::string s = r.string(j["up"], dot(field, "up"));
+    if (s != "y" && s != "z") r.fail(dot(field, "up"), "must be \"y\" or \"z\", got \"" + s + "\"");
+    up = s[0];
+  }
+  std::string mesh_name;
+  if (j.contains("mesh_name")) mesh_name = r.string(j["mesh_name"], dot(field, "mesh_name"));
+  fs::path resolved = fs::path(file).is_absolute() ? fs::path(file) : base_dir / file;
+  Mesh mesh = loadMeshFile(resolved.string(), scale, up, mesh_name, r.file(), dot(field, "file"));
+  mesh.source.file = file;  // as written, so saving reproduces it
+  return mesh;
+}
+
+Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"id", "vertices", "triangles"}, {});
+  Mesh mesh;
+  mesh.source.kind = MeshSource::Kind::Inline;
+  const json& verts = r.array(j["vertices"], dot(field, "vertices"));
+  mesh.positions.reserve(verts.size());
+  for (size_t i = 0; i < verts.size(); ++i)
+    mesh.positions.push_back(r.vec3f(verts[i], at(dot(field, "vertices"), i)));
+  const json& tris = r.array(j["triangles"], dot(field, "triangles"));
+  if (tris.empty()) r.fail(dot(field, "triangles"), "a mesh needs at least one triangle");
+  const int max_index = static_cast<int>(std::min<size_t>(mesh.positions.size(), INT32_MAX)) - 1;
+  mesh.triangles.reserve(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const std::string f = at(dot(field, "triangles"), i);
+    if (!tris[i].is_array() || tris[i].size() != 3)
+      r.fail(f, "expected an array of 3 vertex indices, got " + describe(tris[i]));
+    Tri t;
+    for (int k = 0; k < 3; ++k) {
+      if (max_index < 0) r.fail(f, "the mesh has no vertices");
+      t[k] = static_cast<uint32_t>(r.integer(tris[i][k], at(f, k), 0, max_index));
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+Mesh parseMesh(const Reader& r, const json& j, const std::string& field, const fs::path& base) {
+  if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
+  const int kinds = j.contains("primitive") + j.contains("file") + j.contains("vertices");
+  if (kinds != 1)
+    r.fail(field, "a mesh needs exactly one of \"primitive\", \"file\" or \"vertices\"");
+  const std::string id = j.contains("id") ? r.string(j["id"], dot(field, "id")) : std::string();
+  Mesh mesh = j.contains("primitive") ? parsePrimitive(r, j, field)
+              : j.contains("file")    ? parseFileMesh(r, j, field, base)
+                                      : parseInlineMesh(r, j, field);
+  mesh.id = id;
+  return mesh;
+}
+
+Material parseMaterial(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"id", "type", "albedo"}, {"emission"});
+  Material m;
+  m.id = r.string(j["id"], dot(field, "id"));
+  const std::string type = r.string(j["type"], dot(field, "type"));
+  if (type != "lambertian")
+    r.fail(dot(field, "type"), "unknown material type '" + type + "' (valid: lambertian)");
+  m.albedo = r.vec3f(j["albedo"], dot(field, "albedo"));
+  if (m.albedo.minCoeff() < 0.f || m.albedo.maxCoeff() > 1.f)
+    r.fail(dot(field, "albedo"), "each channel must be in [0, 1] (linear reflectance)");
+  if (j.contains("emission")) {
+    m.emission = r.vec3f(j["emission"], dot(field, "emission"));
+    if (m.emission.minCoeff() < 0.f)
+      r.fail(dot(field, "emission"), "each channel must be >= 0 (radiance, W sr^-1 m^-2)");
+  }
+  return m;
+}
+
+/// The NYU40 id from "nyu40" and/or "category"; when both are given they must agree.
+int parseLabel(const Reader& r, const json& j, const std::string& field) {
+  if (!j.contains("nyu40") && !j.contains("category"))
+    r.fail(field, "needs \"nyu40\" (an id 0..40) or \"category\" (an NYU40 class name)");
+  std::optional<int> by_id, by_name;
+  if (j.contains("nyu40")) by_id = r.integer(j["nyu40"], dot(field, "nyu40"), 0, kNyu40Count - 1);
+  if (j.contains("category")) {
+    const std::string name = r.string(j["category"], dot(field, "category"));
+    by_name = nyu40FromName(name);
+    if (!by_name)
+      r.fail(dot(field, "category"), fmt::format("unknown NYU40 class '{}' (valid: {})", name,
+                                                 nyu40NameList()));
+  }
+  if (by_id && by_name && *by_id != *by_name)
+    r.fail(dot(field, "category"),
+           fmt::format("'{}' is NYU40 id {}, but \"nyu40\" says {} ('{}')", nyu40Name(*by_name),
+                       *by_name, *by_id, nyu40Name(*by_id)));
+  return by_id ? *by_id : *by_name;
+}
+
+/// Index of `id` in `ids`, or a failure listing the defined ids.
+int resolveId(const Reader& r, const std::map<std::string, int>& ids, const std::string& id,
+              const std::string& field, const char* what) {
+  auto it = ids.find(id);
+  if (it != ids.end()) return it->second;
+  Keys names;
+  for (const auto& [name, index] : ids) names.push_back(name);
+  if (names.size() > 20) {
+    names.resize(20);
+    names.push_back("...");
+  }
+  r.fail(field, fmt::format("unknown {} id '{}' (defined: {})", what, id,
+                            names.empty() ? std::string("none") : join(names)));
+}
+
+Object parseObject(const Reader& r, const json& j, const std::string& field,
+                   const std::map<std::string, int>& mesh_ids,
+                   const std::map<std::string, int>& material_ids) {
+  r.object(j, field, {"name", "mesh", "material", "instance", "transform"},
+           {"nyu40", "category"});
+  Object o;
+  o.name = r.string(j["name"], dot(field, "name"));
+  o.mesh = resolveId(r, mesh_ids, r.string(j["mesh"], dot(field, "mesh")), dot(field, "mesh"),
+                     "mesh");
+  o.material = resolveId(r, material_ids, r.string(j["material"], dot(field, "material")),
+                         dot(field, "material"), "material");
+  o.nyu40 = parseLabel(r, j, field);
+  o.instance = r.integer(j["instance"], dot(field, "instance"), 1, 65535);
+  const std::string tf = dot(field, "transform");
+  const json& t = r.fixedArray(j["transform"], tf, 16);
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col)
+      o.T_world_object(row, col) = r.number(t[row * 4 + col], at(tf, row * 4 + col));
+  return o;
+}
+
+PointLight parsePointLight(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"name", "position", "intensity"}, {});
+  PointLight l;
+  l.name = r.string(j["name"], dot(field, "name"));
+  l.position = r.vec3(j["position"], dot(field, "position"));
+  l.intensity = r.vec3f(j["intensity"], dot(field, "intensity"));
+  if (l.intensity.minCoeff() < 0.f)
+    r.fail(dot(field, "intensity"), "each channel must be >= 0 (W/sr)");
+  return l;
+}
+
+/// Checks "format" and "version" first, so that a file of another kind or a newer version gets
+/// that message rather than a complaint about some key it happens to contain.
+void checkHeader(const Reader& r, const json& root) {
+  if (!root.is_object()) r.fail("", "expected a JSON object at the top level, got " + describe(root));
+  if (!root.contains("format"))
+    r.fail("format", fmt::format("missing; a layout file declares \"format\": \"{}\"",
+                                 kLayoutFormat));
+  if (!root["format"].is_string() || root["format"].get<std::string>() != kLayoutFormat)
+    r.fail("format", fmt::format("expected \"{}\", got {}", kLayoutFormat, describe(root["format"])));
+  if (!root.contains("version")) r.fail("version", "missing required key");
+  const json& v = root["version"];
+  const auto& supported = supportedLayoutVersions();
+  Keys names;
+  for (int s : supported) names.push_back(std::to_string(s));
+  bool ok = v.is_number_integer() &&
+            std::find(supported.begin(), supported.end(), v.get<int64_t>()) != supported.end();
+  if (!ok)
+    r.fail("version", fmt::format("unsupported version {} (this build reads version {})",
+                                  v.is_number_integer() ? v.dump() : describe(v), join(names)));
+}
+
+/// Parses each element of root[key] with `parse`, rejecting duplicate ids; returns id -> index.
+template <class T, class Parse>
+std::map<std::string, int> parseList(const Reader& r, const json& root, const char* key,
+                                     std::vector<T>& out, Parse parse) {
+  std::map<std::string, int> ids;
+  const json& list = r.array(root[key], key);
+  for (size_t i = 0; i < list.size(); ++i) {
+    T item = parse(list[i], at(key, i));
+    auto [it, inserted] = ids.emplace(item.id, static_cast<int>(i));
+    if (!inserted)
+      r.fail(at(key, i) + ".id",
+             fmt::format("duplicate id '{}' (already used by {})", item.id, at(key, it->second)));
+    out.push_back(std::move(item));
+  }
+  return ids;
+}
+
+// ---- writing ----
+
+using ojson = nlohmann::ordered_json;
+
+/// A double as JSON: integral values as integers ("1" rather than "1.0"; reads back identical),
+/// others as nlohmann's shortest round-trip text. -0.0 keeps its sign.
+ojson jsonNumber(double v) {
+  const bool negative_zero = (v == 0.0 && std::signbit(v));
+  if (v == std::floor(v) && std::fabs(v) < 1e15 && !negative_zero) return static_cast<int64_t>(v);
+  return v;
+}
+
+/// A float as JSON: the shortest decimal that reads back (double, then cast to float) as the
+/// same float, e.g. 0.72f -> 0.72 instead of its widened 0.7200000286102295.
+ojson jsonNumber(float f) {
+  const std::string text = fmt::format("{}", f);
+  double d = std::strtod(text.c_str(), nullptr);
+  if (static_cast<float>(d) != f) d = static_cast<double>(f);  // guard against double rounding
+  return jsonNumber(d);
+}
+
+template <class V>
+ojson jsonArray(const V& v) {
+  ojson a = ojson::array();
+  for (int i = 0; i < v.size(); ++i) a.push_back(jsonNumber(v[i]));
+  return a;
+}
+
+ojson meshToJson(const Mesh& m, const std::string& where, const std::string& field) {
+  ojson j;
+  j["id"] = m.id;
+  const MeshSource& s = m.source;
+  switch (s.kind) {
+    case MeshSource::Kind::Primitive: {
+      j["primitive"] = s.primitive;
+      if (!s.params.empty()) {
+        ojson params = ojson::object();
+        for (const auto& [key, value] : s.params) params[key] = jsonNumber(value);
+        j["params"] = params;
+      }
+      break;
+    }
+    case MeshSource::Kind::File:
+      j["file"] = s.file;
+      j["scale"] = jsonNumber(s.scale);
+      j["up"] = std::string(1, s.up);
+      if (!s.mesh_name.empty()) j["mesh_name"] = s.mesh_name;
+      break;
+    case MeshSource::Kind::Inline: {
+      if (m.isSphere())
+        throw InputError(where, field, "an analytic sphere must have a \"sphere\" primitive source");
+      ojson verts = ojson::array(), tris = ojson::array();
+      for (const auto& p : m.positions) verts.push_back(jsonArray(p));
+      for (const auto& t : m.triangles) tris.push_back({t[0], t[1], t[2]});
+      j["vertices"] = std::move(verts);
+      j["triangles"] = std::move(tris);
+      break;
+    }
+  }
+  return j;
+}
+
+ojson objectToJson(const Scene& scene, const Object& o) {
+  ojson j;
+  j["name"] = o.name;
+  j["mesh"] = scene.meshes[o.mesh].id;
+  j["material"] = scene.materials[o.material].id;
+  j["nyu40"] = o.nyu40;
+  j["category"] = std::string(nyu40Name(o.nyu40));
+  j["instance"] = o.instance;
+  ojson t = ojson::array();
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) t.push_back(jsonNumber(o.T_world_object(row, col)));
+  j["transform"] = std::move(t);
+  return j;
+}
+
+/// Ids must be present and unique for objects to refer to them and for the file to load again.
+template <class T>
+void checkIds(const std::vector<T>& items, const std::string& where, const char* list) {
+  std::map<std::string, size_t> seen;
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (items[i].id.empty()) throw InputError(where, at(list, i) + ".id", "empty id");
+    auto [it, inserted] = seen.emplace(items[i].id, i);
+    if (!inserted)
+      throw InputError(where, at(list, i) + ".id",
+                       fmt::format("duplicate id '{}' (already used by {})", items[i].id,
+                                   at(list, it->second)));
+  }
+}
+
+/// Everything the reader requires that Scene::validate does not check, so that what we write
+/// always loads again.
+void checkWritable(const Scene& scene, const std::string& where) {
+  scene.validate(where);
+  checkIds(scene.meshes, where, "meshes");
+  checkIds(scene.materials, where, "materials");
+  if (scene.name.empty()) throw InputError(where, "name", "empty scene name");
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshSource& src = scene.meshes[i].source;
+    if (src.kind == MeshSource::Kind::File && (src.file.empty() || !(src.scale > 0) ||
+                                               (src.up != 'y' && src.up != 'z')))
+      throw InputError(where, at("meshes", i), "file source needs a path, scale > 0, up y or z");
+  }
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].name.empty()) throw InputError(where, at("objects", i) + ".name", "empty");
+  for (size_t i = 0; i < scene.point_lights.size(); ++i) {
+    const PointLight& l = scene.point_lights[i];
+    if (l.name.empty() || !l.position.allFinite() || !l.intensity.allFinite() ||
+        l.intensity.minCoeff() < 0.f)
+      throw InputError(where, at("point_lights", i),
+                       "needs a name, a finite position and a finite intensity >= 0");
+  }
+}
+
+bool isScalar(const ojson& j) { return !j.is_object() && !j.is_array(); }
+
+std::string dumpScalar(const ojson& j) {
+  return j.dump(-1, ' ', false, ojson::error_handler_t::replace);
+}
+
+/// 2-space indented JSON with arrays of scalars kept on one line ("[1, 0, 0]").
+void writePretty(const ojson& j, int indent, std::string& out) {
+  const bool nested = j.is_object() || (j.is_array() && !std::all_of(j.begin(), j.end(), isScalar));
+  if (!nested || j.empty()) {
+    if (j.is_array()) {
+      out += '[';
+      for (size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + dumpScalar(j[i]);
+      out += ']';
+    } else {
+      out += j.is_object() ? std::string("{}") : dumpScalar(j);
+    }
+    return;
+  }
+  out += j.is_object() ? "{\n" : "[\n";
+  size_t i = 0;
+  for (auto it = j.begin(); it != j.end(); ++it, ++i) {
+    out.append(static_cast<size_t>(indent) + 2, ' ');
+    if (j.is_object()) out += dumpScalar(ojson(it.key())) + ": ";
+    writePretty(it.value(), indent + 2, out);
+    out += (i + 1 < j.size()) ? ",\n" : "\n";
+  }
+  out.append(static_cast<size_t>(indent), ' ');
+  out += j.is_object() ? '}' : ']';
+}
+
+}  // namespace
+
+Scene parseLayout(const std::string& text, const std::string& path) {
+  const Reader r(path);
+  const json root = parseText(text, path);
+  checkHeader(r, root);
+  r.object(root, "", {"format", "version", "meshes", "materials", "objects"},
+           {"name", "point_lights"});
+  Scene scene;
+  if (root.contains("name")) scene.name = r.string(root["name"], "name");
+  const fs::path base_dir = fs::path(path).parent_path();
+  auto mesh_ids = parseList(r, root, "meshes", scene.meshes, [&](const json& j, const auto& f) {
+    return parseMesh(r, j, f, base_dir);
+  });
+  auto material_ids = parseList(r, root, "materials", scene.materials,
+                                [&](const json& j, const auto& f) { return parseMaterial(r, j, f); });
+  const json& objects = r.array(root["objects"], "objects");
+  for (size_t i = 0; i < objects.size(); ++i)
+    scene.objects.push_back(parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids));
+  if (root.contains("point_lights")) {
+    const json& lights = r.array(root["point_lights"], "point_lights");
+    for (size_t i = 0; i < lights.size(); ++i)
+      scene.point_lights.push_back(parsePointLight(r, lights[i], at("point_lights", i)));
+  }
+  scene.validate(path);
+  return scene;
+}
+
+Scene loadLayout(const std::string& path) { return parseLayout(readTextFile(path), path); }
+
+std::string layoutToJson(const Scene& scene) {
+  const std::string where = fmt::format("scene '{}'", scene.name);
+  checkWritable(scene, where);
+  ojson root;
+  root["format"] = kLayoutFormat;
+  root["version"] = supportedLayoutVersions().back();
+  root["name"] = scene.name;
+  root["meshes"] = ojson::array();
+  for (size_t i = 0; i < scene.meshes.size(); ++i)
+    root["meshes"].push_back(meshToJson(scene.meshes[i], where, at("meshes", i)));
+  root["materials"] = ojson::array();
+  for (const auto& m : scene.materials) {
+    ojson j;
+    j["id"] = m.id;
+    j["type"] = "lambertian";
+    j["albedo"] = jsonArray(m.albedo);
+    j["emission"] = jsonArray(m.emission);
+    root["materials"].push_back(std::move(j));
+  }
+  root["objects"] = ojson::array();
+  for (const auto& o : scene.objects) root["objects"].push_back(objectToJson(scene, o));
+  root["point_lights"] = ojson::array();
+  for (const auto& l : scene.point_lights) {
+    ojson j;
+    j["name"] = l.name;
+    j["position"] = jsonArray(l.position);
+    j["intensity"] = jsonArray(l.intensity);
+    root["point_lights"].push_back(std::move(j));
+  }
+  std::string out;
+  writePretty(root, 0, out);
+  out += '\n';
+  return out;
+}
+
+void saveLayout(const Scene& scene, const std::string& path) {
+  writeTextAtomic(path, layoutToJson(scene));
+}
+
+}  // namespace inet

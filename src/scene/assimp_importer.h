@@ -1,0 +1,60 @@
+#pragma once
+// Mesh-file import through Assimp (OBJ, glTF, PLY, FBX, ... anything Assimp reads).
+//
+// Two entry points:
+//  - importMeshScene: a whole file becomes a Scene. Every (node, aiMesh) pair of the node tree is
+//    one Object; nodes that reference the same aiMesh share one Mesh. Object names come from the
+//    node (for OBJ the `o`/`g` name), labels from a LabelMap, instance ids from distinct names.
+//  - loadMeshFile: a whole file (or one named part of it) merged into one object-space Mesh, for
+//    layout.json meshes that reference a file.
+//
+// Axes and units: the world is right-handed, Z up, metres. A file with `up = 'y'` is rotated so
+// that +Y becomes +Z (x -> x, y -> z, z -> -y); `scale` is metres per file unit. Both are applied
+// to vertex positions (so meshes are in metres, Z up) and conjugated into node transforms
+// (T' = C T C^-1, C = scale * R_up), so a rigid node transform stays rigid.
+// Faces that are not triangles after triangulation (lines, points) are dropped and counted.
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace inet {
+
+/// How to read a mesh file into a Scene.
+struct ImportOptions {
+  double scale = 1.0;                          ///< metres per file unit, > 0
+  char up = 'z';                               ///< the file's up axis: 'z' or 'y'
+  std::string label_map;                       ///< label map CSV path ("" = NYU40 names only)
+  std::string default_category = "otherprop";  ///< NYU40 class for names nothing matches
+};
+
+/// What an import did that a user may want to know about, reported once (not per object).
+struct ImportReport {
+  size_t objects = 0;                        ///< objects created
+  size_t unmatched_objects = 0;              ///< objects that got default_category
+  std::vector<std::string> unmatched_names;  ///< distinct unmatched names, in file order
+  size_t dropped_faces = 0;                  ///< non-triangle faces (lines, points) skipped
+  size_t clamped_materials = 0;              ///< materials whose diffuse colour left [0, 1]
+
+  /// One line, findings separated by "; " (e.g. "12 objects (3 distinct names) matched no label
+  /// and were labelled 'otherprop': lamp_a, ..."), or "" when there is nothing to warn about.
+  std::string summary(const std::string& default_category) const;
+};
+
+/// Imports the mesh file `path` as a Scene named after the file's stem. Throws InputError naming
+/// the file when it is missing, unreadable, malformed (Assimp's message), has no triangles, when
+/// the options are invalid, or (naming the CSV) when the label map is bad.
+/// `report`, if given, receives the warnings summary.
+Scene importMeshScene(const std::string& path, const ImportOptions& opt,
+                      ImportReport* report = nullptr);
+
+/// Loads `path` as one object-space Mesh (metres, Z up): every mesh instance of the file merged
+/// with its node transform applied, or only the instances whose node or mesh is named
+/// `mesh_name` (when not empty). Errors are thrown as InputError(where_file, where_field, ...)
+/// so they point at the layout entry that asked for the file. The returned mesh has
+/// source.kind == File with `path`, `scale`, `up` and `mesh_name` filled in; callers that resolved
+/// a relative path should overwrite source.file with the path as written.
+Mesh loadMeshFile(const std::string& path, double scale, char up, const std::string& mesh_name,
+                  const std::string& where_file, const std::string& where_field);
+
+}  // namespace inet

@@ -1,0 +1,316 @@
+// Mesh-file import: objects, labels, materials, axes, instancing, errors; plus the benchmark room
+// and a SceneNet layout from ../shared when present.
+#include "scene/assimp_importer.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "core/error.h"
+#include "scene/nyu40.h"
+#include "scene_test_util.h"
+
+namespace inet {
+namespace {
+
+using test::fixture;
+using test::TempDir;
+
+int id(const char* name) { return *nyu40FromName(name); }
+
+int findObject(const Scene& s, const std::string& name) {
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    if (s.objects[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+/// World-space position of vertex `v` of object `o`.
+Vec3 worldVertex(const Scene& s, const Object& o, int v) {
+  Vec3 p = s.meshes[o.mesh].positions[v].cast<double>();
+  return (o.T_world_object * p.homogeneous()).head<3>();
+}
+
+/// Geometric normal of triangle `t` of object `o`, in world space.
+Vec3 worldNormal(const Scene& s, const Object& o, int t) {
+  const Tri& tri = s.meshes[o.mesh].triangles[t];
+  Vec3 a = worldVertex(s, o, tri[0]), b = worldVertex(s, o, tri[1]), c = worldVertex(s, o, tri[2]);
+  return (b - a).cross(c - a).normalized();
+}
+
+template <class F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(AssimpImporter, ObjObjectsMaterialsAndLabels) {
+  ImportReport report;
+  Scene s = importMeshScene(fixture("two_parts.obj").string(), {}, &report);
+  EXPECT_EQ(s.name, "two_parts");
+  ASSERT_EQ(s.objects.size(), 2u);
+  const Object& chair = s.objects[0];
+  const Object& panel = s.objects[1];
+  EXPECT_EQ(chair.name, "chair_01");
+  EXPECT_EQ(panel.name, "glow_panel");
+  EXPECT_EQ(chair.nyu40, id("chair"));
+  EXPECT_EQ(panel.nyu40, id("otherprop"));  // default_category
+  EXPECT_EQ(chair.instance, 1);
+  EXPECT_EQ(panel.instance, 2);
+  EXPECT_EQ(s.triangleCount(), 3u);
+  EXPECT_TRUE(chair.T_world_object.isIdentity());
+  // materials exactly as the MTL states them (Kd linear albedo, Ke radiance)
+  const Material& red = s.materials[chair.material];
+  const Material& glow = s.materials[panel.material];
+  EXPECT_EQ(red.id, "red_fabric");
+  EXPECT_EQ(red.albedo, Vec3f(0.55f, 0.1f, 0.1f));
+  EXPECT_FALSE(red.isEmissive());
+  EXPECT_EQ(glow.emission, Vec3f(12.f, 11.5f, 10.5f));
+  EXPECT_EQ(glow.albedo, Vec3f(0.f, 0.f, 0.f));
+  EXPECT_EQ(s.materials.size(), 2u) << "unused DefaultMaterial is not imported";
+  // winding preserved: the panel at z = 2 faces down (f 5 7 6)
+  EXPECT_NEAR(worldNormal(s, panel, 0).z(), -1.0, 1e-9);
+  EXPECT_NEAR(worldNormal(s, chair, 0).z(), 1.0, 1e-9);
+  // one summary for the unmatched name
+  EXPECT_EQ(report.objects, 2u);
+  EXPECT_EQ(report.unmatched_objects, 1u);
+  EXPECT_EQ(report.unmatched_names, std::vector<std::string>{"glow_panel"});
+  std::string summary = report.summary("otherprop");
+  EXPECT_NE(summary.find("glow_panel"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("'otherprop'"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find('\n'), std::string::npos);
+  EXPECT_EQ(ImportReport().summary("otherprop"), "");
+}
+
+TEST(AssimpImporter, LabelMapAndDefaultCategoryOptions) {
+  TempDir dir;
+  ImportOptions opt;
+  opt.label_map = dir.write("labels.csv", "glow,lamp\n");
+  ImportReport report;
+  Scene s = importMeshScene(fixture("two_parts.obj").string(), opt, &report);
+  EXPECT_EQ(s.objects[1].nyu40, id("lamp"));
+  EXPECT_EQ(report.unmatched_objects, 0u);
+
+  ImportOptions fallback;
+  fallback.default_category = "otherfurniture";
+  EXPECT_EQ(importMeshScene(fixture("two_parts.obj").string(), fallback).objects[1].nyu40,
+            id("otherfurniture"));
+
+  ImportOptions bad;
+  bad.default_category = "gizmo";
+  std::string e = errorOf([&] { importMeshScene(fixture("two_parts.obj").string(), bad); });
+  EXPECT_NE(e.find("default_category"), std::string::npos) << e;
+  EXPECT_NE(e.find("otherprop"), std::string::npos) << "lists the valid names: " << e;
+
+  ImportOptions bad_map;
+  bad_map.label_map = dir.write("bad.csv", "glow,lamp\nglow\n");
+  e = errorOf([&] { importMeshScene(fixture("two_parts.obj").string(), bad_map); });
+  EXPECT_NE(e.find("bad.csv: line 2"), std::string::npos) << e;
+}
+
+TEST(AssimpImporter, YUpAndScaleConversion) {
+  TempDir dir;
+  // one triangle in a Y-up file, in centimetres
+  std::string path = dir.write("yup.obj", "o shelf\nv 0 0 0\nv 100 0 0\nv 0 200 -300\nf 1 2 3\n");
+  ImportOptions opt;
+  opt.up = 'y';
+  opt.scale = 0.01;
+  Scene s = importMeshScene(path, opt);
+  ASSERT_EQ(s.objects.size(), 1u);
+  // +Y -> +Z, +Z -> -Y: (0, 200, -300) cm -> (0, 3, 2) m
+  EXPECT_TRUE(worldVertex(s, s.objects[0], 2).isApprox(Vec3(0, 3, 2), 1e-6));
+  EXPECT_TRUE(worldVertex(s, s.objects[0], 1).isApprox(Vec3(1, 0, 0), 1e-6));
+  // a proper rotation keeps the winding: file normal (100,0,0) x (0,200,-300) ~ (0,3,2),
+  // rotated (x, y, z) -> (x, -z, y) gives (0, -2, 3)
+  EXPECT_TRUE(worldNormal(s, s.objects[0], 0).isApprox(Vec3(0, -2, 3).normalized(), 1e-6));
+  ImportOptions bad;
+  bad.up = 'x';
+  EXPECT_NE(errorOf([&] { importMeshScene(path, bad); }).find("up axis"), std::string::npos);
+  bad.up = 'z';
+  bad.scale = 0;
+  EXPECT_NE(errorOf([&] { importMeshScene(path, bad); }).find("scale"), std::string::npos);
+}
+
+TEST(AssimpImporter, PlyFile) {
+  TempDir dir;
+  std::string path = dir.write("quad.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 1\n"
+                               "property list uchar int vertex_indices\nend_header\n"
+                               "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  Scene s = importMeshScene(path, {});
+  EXPECT_EQ(s.triangleCount(), 2u);  // the quad is triangulated
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].instance, 1);
+}
+
+TEST(AssimpImporter, GltfNodeTransformsAndSharedMeshes) {
+  Scene s = importMeshScene(fixture("instanced.gltf").string(), {});
+  ASSERT_EQ(s.objects.size(), 3u);
+  const Object& a = s.objects[findObject(s, "table_a")];
+  const Object& b = s.objects[findObject(s, "table_b")];
+  const Object& m = s.objects[findObject(s, "mirror_x")];
+  EXPECT_EQ(a.mesh, b.mesh) << "nodes referencing one aiMesh share one Mesh";
+  EXPECT_NE(m.mesh, a.mesh) << "a mirrored instance is baked into its own mesh";
+  EXPECT_TRUE(m.T_world_object.isIdentity());
+  EXPECT_EQ(s.meshes.size(), 2u);
+  // the triangle is (0,0,0), (1,0,0), (0,1,0); node translations as written in the file
+  EXPECT_TRUE(worldVertex(s, a, 1).isApprox(Vec3(2, 0, 0)));
+  EXPECT_TRUE(worldVertex(s, b, 2).isApprox(Vec3(0, 1, 2)));
+  // mirror_x: scale (-1, 1, 1) under the parent's translation (0, 5, 0)
+  std::set<std::tuple<double, double, double>> got;
+  for (int v = 0; v < 3; ++v) {
+    Vec3 p = worldVertex(s, m, v);
+    got.insert({p.x(), p.y(), p.z()});
+  }
+  std::set<std::tuple<double, double, double>> want = {{0, 5, 0}, {-1, 5, 0}, {0, 6, 0}};
+  EXPECT_EQ(got, want);
+  // a mirror must not turn the surface inside out: the normal still points to +z
+  EXPECT_NEAR(worldNormal(s, m, 0).z(), 1.0, 1e-9);
+  EXPECT_NEAR(worldNormal(s, a, 0).z(), 1.0, 1e-9);
+  EXPECT_EQ(s.materials[a.material].albedo, Vec3f(0.5f, 0.25f, 0.125f));
+  std::set<int> instances = {a.instance, b.instance, m.instance};
+  EXPECT_EQ(instances, (std::set<int>{1, 2, 3}));
+}
+
+TEST(AssimpImporter, GltfYUpConjugatesNodeTransforms) {
+  ImportOptions opt;
+  opt.up = 'y';
+  Scene s = importMeshScene(fixture("instanced.gltf").string(), opt);
+  const Object& b = s.objects[findObject(s, "table_b")];
+  // file point (0,1,0) + translation (0,0,2) = (0,1,2) (Y up) -> (0,-2,1) (Z up)
+  EXPECT_TRUE(worldVertex(s, b, 2).isApprox(Vec3(0, -2, 1)));
+  EXPECT_TRUE((b.T_world_object.block<3, 3>(0, 0).isIdentity())) << "still a pure translation";
+}
+
+TEST(AssimpImporter, ErrorsNameTheFile) {
+  TempDir dir;
+  std::string e = errorOf([&] { importMeshScene((dir.path() / "nope.obj").string(), {}); });
+  EXPECT_NE(e.find("nope.obj"), std::string::npos) << e;
+  EXPECT_NE(e.find("not found"), std::string::npos) << e;
+
+  e = errorOf([&] { importMeshScene(fixture("malformed.obj").string(), {}); });
+  EXPECT_NE(e.find("malformed.obj"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot import"), std::string::npos) << e;
+  EXPECT_NE(e.find("index out of range"), std::string::npos) << "Assimp's reason: " << e;
+
+  e = errorOf([&] { importMeshScene(dir.write("empty.obj", ""), {}); });
+  EXPECT_NE(e.find("empty.obj"), std::string::npos) << e;
+
+  e = errorOf([&] { importMeshScene(dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n"), {}); });
+  EXPECT_NE(e.find("lines.obj"), std::string::npos) << e;
+  EXPECT_NE(e.find("no triangles"), std::string::npos) << e;
+
+  e = errorOf([&] { importMeshScene(dir.path().string(), {}); });
+  EXPECT_NE(e.find("folder"), std::string::npos) << e;
+}
+
+TEST(AssimpImporter, LoadMeshFileMergesOrPicksByName) {
+  const std::string path = fixture("two_parts.obj").string();
+  Mesh all = loadMeshFile(path, 1.0, 'z', "", "layout.json", "meshes[0].file");
+  EXPECT_EQ(all.triangles.size(), 3u);
+  EXPECT_EQ(all.positions.size(), 7u);
+  EXPECT_EQ(all.source.kind, MeshSource::Kind::File);
+  Mesh chair = loadMeshFile(path, 2.0, 'z', "chair_01", "layout.json", "meshes[0].file");
+  EXPECT_EQ(chair.triangles.size(), 2u);
+  EXPECT_EQ(chair.source.mesh_name, "chair_01");
+  EXPECT_EQ(chair.source.scale, 2.0);
+  float max_x = 0;
+  for (const auto& p : chair.positions) max_x = std::max(max_x, p.x());
+  EXPECT_EQ(max_x, 2.0f);
+
+  std::string e = errorOf([&] { loadMeshFile(path, 1, 'z', "sofa", "layout.json", "meshes[4].file"); });
+  EXPECT_NE(e.find("layout.json: meshes[4].file:"), std::string::npos) << e;
+  EXPECT_NE(e.find("chair_01, glow_panel"), std::string::npos) << "lists the names: " << e;
+  e = errorOf([&] {
+    loadMeshFile(fixture("malformed.obj").string(), 1, 'z', "", "layout.json", "meshes[1].file");
+  });
+  EXPECT_NE(e.find("layout.json: meshes[1].file:"), std::string::npos) << e;
+  EXPECT_NE(e.find("malformed.obj"), std::string::npos) << e;
+}
+
+TEST(AssimpImporter, BenchmarkRoom) {
+  const auto room = test::sharedDir() / "bench" / "room.obj";
+  if (!std::filesystem::exists(room)) GTEST_SKIP() << "needs ../shared/bench/room.obj (absent)";
+  ImportOptions opt;
+  opt.label_map = fixture("room_labels.csv").string();
+  ImportReport report;
+  Scene s = importMeshScene(room.string(), opt, &report);
+  EXPECT_EQ(s.triangleCount(), 183798u);
+  std::set<std::string> names;
+  std::set<int> instances;
+  for (const auto& o : s.objects) {
+    names.insert(o.name);
+    instances.insert(o.instance);
+  }
+  EXPECT_EQ(names.size(), 28u);
+  EXPECT_EQ(instances.size(), 28u);
+  EXPECT_EQ(*instances.begin(), 1);
+  EXPECT_EQ(*instances.rbegin(), 28);
+  // exactly one emitter, with the MTL's Ke
+  int emissive = 0;
+  for (const auto& o : s.objects) {
+    if (!s.materials[o.material].isEmissive()) continue;
+    ++emissive;
+    EXPECT_EQ(o.name, "ceiling_light");
+    EXPECT_EQ(s.materials[o.material].emission, Vec3f(12.f, 11.5f, 10.5f));
+    EXPECT_NEAR(worldNormal(s, o, 0).z(), -1.0, 1e-6) << "the light faces down";
+  }
+  EXPECT_EQ(emissive, 1);
+  auto [lo, hi] = s.bounds();
+  EXPECT_LT(lo.norm(), 1e-6);
+  EXPECT_TRUE(hi.isApprox(Vec3(5, 4, 2.7), 1e-6));
+  EXPECT_EQ(s.objects[findObject(s, "bed")].nyu40, id("bed"));
+  EXPECT_EQ(s.objects[findObject(s, "nightstand_left")].nyu40, id("night_stand"));
+  EXPECT_EQ(s.objects[findObject(s, "table_lamp_right")].nyu40, id("lamp"));
+  EXPECT_EQ(s.objects[findObject(s, "desk_chair")].nyu40, id("chair"));
+  EXPECT_EQ(s.objects[findObject(s, "room_walls")].nyu40, id("wall"));
+  EXPECT_EQ(report.unmatched_names, (std::vector<std::string>{"decor_ball", "decor_ring"}));
+}
+
+TEST(AssimpImporter, SceneNetLayoutIsYUp) {
+  const auto dir = test::sharedDir() / "data" / "scenes" / "scenenet_rgbd_layouts";
+  const auto bedroom = dir / "bedroom" / "bedroom3_layout.obj";
+  if (!std::filesystem::exists(bedroom))
+    GTEST_SKIP() << "needs ../shared/data/scenes/scenenet_rgbd_layouts (absent)";
+  TempDir tmp;
+  ImportOptions opt;
+  opt.up = 'y';
+  opt.label_map = tmp.write("scenenet.csv", "painting,picture\nplate,otherprop\n");
+  ImportReport report;
+  Scene s = importMeshScene(bedroom.string(), opt, &report);
+  EXPECT_EQ(s.objects.size(), 15u);
+  EXPECT_EQ(s.triangleCount(), 16968u);
+  EXPECT_EQ(report.unmatched_objects, 0u) << report.summary(opt.default_category);
+  EXPECT_EQ(s.objects[findObject(s, "painting.004")].nyu40, id("picture"));
+  EXPECT_EQ(s.objects[findObject(s, "wall.002")].nyu40, id("wall"));
+  EXPECT_EQ(s.objects[findObject(s, "curtain.002")].nyu40, id("curtain"));
+  // README: extent 8.2 x 2.8 (Y, height) x 6.8; floor at y ~ 0 -> z ~ 0 after conversion
+  auto [lo, hi] = s.bounds();
+  EXPECT_NEAR(hi.z() - lo.z(), 2.8, 0.06);
+  EXPECT_NEAR(lo.z(), 0.0, 0.05);
+  EXPECT_NEAR(hi.x() - lo.x(), 8.2, 0.06);
+  EXPECT_NEAR(hi.y() - lo.y(), 6.8, 0.06);
+  // the floor is a 1 cm slab whose top (file y = 0) faces +Y; after conversion the large top
+  // triangles (z = 0) face +z and the bottom ones (z = -0.0103) face -z
+  const Object& floor = s.objects[findObject(s, "floor.002")];
+  int top = 0, bottom = 0;
+  for (size_t t = 0; t < s.meshes[floor.mesh].triangles.size(); ++t) {
+    const Tri& tri = s.meshes[floor.mesh].triangles[t];
+    Vec3 a = worldVertex(s, floor, tri[0]), b = worldVertex(s, floor, tri[1]),
+         c = worldVertex(s, floor, tri[2]);
+    if ((b - a).cross(c - a).norm() < 2.0) continue;  // area < 1 m^2
+    const double z = (a.z() + b.z() + c.z()) / 3.0;
+    const double nz = worldNormal(s, floor, static_cast<int>(t)).z();
+    if (std::abs(z) < 1e-4) top += nz > 0.99;
+    if (std::abs(z + 0.0103) < 1e-4) bottom += nz < -0.99;
+  }
+  EXPECT_EQ(top, 6);
+  EXPECT_EQ(bottom, 6);
+}
+
+}  // namespace
+}  // namespace inet

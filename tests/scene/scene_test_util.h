@@ -1,0 +1,109 @@
+#pragma once
+// Helpers shared by the scene tests: a self-deleting temporary folder, file writing, the fixture
+// folder, and a field-by-field Scene comparison (exact: doubles and floats compare bit for bit
+// via ==, except that -0.0 and 0.0 are told apart).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace inet::test {
+
+/// The hand-made fixtures under tests/data/scene.
+inline std::filesystem::path fixture(const std::string& name) {
+  return std::filesystem::path(INET_SOURCE_DIR) / "tests" / "data" / "scene" / name;
+}
+
+/// ../shared (benchmark scene, public data sets), absent on some machines.
+inline std::filesystem::path sharedDir() { return std::filesystem::path(INET_SHARED_DIR); }
+
+/// A fresh folder under the system temp folder, removed with everything in it at scope exit.
+class TempDir {
+public:
+  TempDir() {
+    static int counter = 0;
+    path_ = std::filesystem::temp_directory_path() /
+            ("inet_scene_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  /// Writes `text` to `name` inside the folder (creating subfolders) and returns the full path.
+  std::string write(const std::string& name, const std::string& text) const {
+    std::filesystem::path p = path_ / name;
+    std::filesystem::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+
+private:
+  std::filesystem::path path_;
+};
+
+inline bool sameBits(double a, double b) {
+  return a == b && std::signbit(a) == std::signbit(b);
+}
+
+/// Field-by-field equality with messages naming the first differing field.
+inline void expectScenesEqual(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  for (size_t i = 0; i < a.meshes.size(); ++i) {
+    SCOPED_TRACE("meshes[" + std::to_string(i) + "]");
+    const Mesh &x = a.meshes[i], &y = b.meshes[i];
+    EXPECT_EQ(x.id, y.id);
+    EXPECT_EQ(x.source.kind, y.source.kind);
+    EXPECT_EQ(x.source.primitive, y.source.primitive);
+    EXPECT_EQ(x.source.params, y.source.params);
+    EXPECT_EQ(x.source.file, y.source.file);
+    EXPECT_TRUE(sameBits(x.source.scale, y.source.scale));
+    EXPECT_EQ(x.source.up, y.source.up);
+    EXPECT_EQ(x.source.mesh_name, y.source.mesh_name);
+    EXPECT_EQ(x.sphere_radius, y.sphere_radius);
+    EXPECT_EQ(x.positions, y.positions);
+    EXPECT_EQ(x.triangles, y.triangles);
+  }
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    SCOPED_TRACE("materials[" + std::to_string(i) + "]");
+    EXPECT_EQ(a.materials[i].id, b.materials[i].id);
+    EXPECT_EQ(a.materials[i].type, b.materials[i].type);
+    EXPECT_EQ(a.materials[i].albedo, b.materials[i].albedo);
+    EXPECT_EQ(a.materials[i].emission, b.materials[i].emission);
+  }
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (size_t i = 0; i < a.objects.size(); ++i) {
+    SCOPED_TRACE("objects[" + std::to_string(i) + "]");
+    const Object &x = a.objects[i], &y = b.objects[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.mesh, y.mesh);
+    EXPECT_EQ(x.material, y.material);
+    for (int k = 0; k < 16; ++k)
+      EXPECT_TRUE(sameBits(x.T_world_object(k / 4, k % 4), y.T_world_object(k / 4, k % 4)))
+          << "transform element " << k;
+    EXPECT_EQ(x.nyu40, y.nyu40);
+    EXPECT_EQ(x.instance, y.instance);
+  }
+  ASSERT_EQ(a.point_lights.size(), b.point_lights.size());
+  for (size_t i = 0; i < a.point_lights.size(); ++i) {
+    SCOPED_TRACE("point_lights[" + std::to_string(i) + "]");
+    EXPECT_EQ(a.point_lights[i].name, b.point_lights[i].name);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_TRUE(sameBits(a.point_lights[i].position[k], b.point_lights[i].position[k]));
+    EXPECT_EQ(a.point_lights[i].intensity, b.point_lights[i].intensity);
+  }
+}
+
+}  // namespace inet::test
