@@ -1,1 +1,164 @@
-// (being written)
+#include "dataset/asl_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "dataset/image_encode.h"
+
+namespace inet {
+namespace {
+
+/// One ASL sensor folder holding images. `comment` goes into its sensor.yaml; it is a YAML plain
+/// scalar, so it must not contain ": " or " #".
+struct AslSensor {
+  const char* folder;
+  const char* comment;
+};
+
+constexpr AslSensor kImageSensors[] = {
+    {"cam0", "interiornet cam0, path-traced colour, 8-bit sRGB RGB PNG"},
+    {"depth0",
+     "interiornet depth0, registered to cam0. <t>.png z-depth along the optical axis as 16-bit "
+     "millimetres (0 = no depth or beyond 65.535 m). <t>.exr Euclidean ray depth (camera centre "
+     "to surface) in metres, float channel Z, 0 = no depth"},
+    {"normal0",
+     "interiornet normal0, registered to cam0. Unit surface normal in the camera frame (x right, "
+     "y down, z forward) as 16-bit RGB, code = round((n + 1) / 2 * 65535), (0, 0, 0) = none"},
+    {"albedo0", "interiornet albedo0, registered to cam0. Diffuse albedo, 8-bit sRGB RGB PNG"},
+    {"label0",
+     "interiornet label0, registered to cam0. <t>_nyu.png NYU40 class id (8-bit, 0 = void), "
+     "<t>_instance.png instance id (16-bit, 0 = none); never anti-aliased"},
+};
+
+// Layout of the EuRoC files in ../shared/data/formats/euroc_asl (comments, blank lines, the T_BS
+// block), so that tools and people reading the real files find the same structure.
+constexpr const char* kIdentityTbs =
+    "T_BS:\n"
+    "  cols: 4\n"
+    "  rows: 4\n"
+    "  data: [1.0, 0.0, 0.0, 0.0,\n"
+    "         0.0, 1.0, 0.0, 0.0,\n"
+    "         0.0, 0.0, 1.0, 0.0,\n"
+    "         0.0, 0.0, 0.0, 1.0]\n";
+
+/// Nominal frame rate for rate_hz: 1 s over the median frame interval, to 3 decimals ("25" for
+/// 40 ms frames, robust to a jittered stamp); 0 for a single frame.
+std::string rateText(const Trajectory& traj) {
+  if (traj.size() < 2) return "0";
+  std::vector<TimeNs> dt;
+  for (size_t k = 1; k < traj.size(); ++k)
+    dt.push_back(traj.poses[k].t_ns - traj.poses[k - 1].t_ns);
+  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+  double rate = std::round(1e9 / static_cast<double>(dt[dt.size() / 2]) * 1000.0) / 1000.0;
+  if (rate == std::round(rate)) return fmt::format("{}", std::llround(rate));
+  return formatFloat(rate);
+}
+
+class AslWriter final : public FormatWriter {
+public:
+  explicit AslWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
+    for (size_t k = 0; k < ctx().traj.size(); ++k)
+      if (ctx().traj.poses[k].t_ns < 0)
+        throw InputError("trajectory", fmt::format("pose {}", k),
+                         "negative timestamp; ASL file names need t >= 0 ns");
+    addOutput("cam0/data", ".png", srgbPng(Pass::Rgb));
+    addOutput("depth0/data", ".png", depthPng(Pass::DepthZ, kDepthScaleMm));
+    addOutput("depth0/data", ".exr", floatExr(Pass::DepthRay, {"Z"}));
+    addOutput("normal0/data", ".png", normalPng(Pass::Normal));
+    addOutput("albedo0/data", ".png", srgbPng(Pass::Albedo));
+    addOutput("label0/data", "_nyu.png", rawPng(Pass::Label));
+    addOutput("label0/data", "_instance.png", rawPng(Pass::Instance));
+  }
+
+  std::string name() const override { return "asl"; }
+  std::string frameStem(size_t k) const override { return aslStamp(ctx().traj.poses.at(k).t_ns); }
+
+  void finish() const override {
+    const auto& dir = ctx().spec.dir;
+    writeTextAtomic(dir / "body.yaml",
+                    "comment: interiornet virtual camera rig; body frame B = cam0 frame "
+                    "(x right, y down, z forward)\n");
+    for (const auto& sensor : kImageSensors) {
+      // data.csv lists the first file of each frame in this folder (e.g. the depth PNG; the
+      // .exr or _instance.png sibling has the same <t>).
+      const std::string data_folder = std::string(sensor.folder) + "/data";
+      for (const auto& o : outputs()) {
+        if (o.folder != data_folder) continue;
+        writeTextAtomic(dir / sensor.folder / "data.csv", cameraCsv(o.suffix));
+        writeTextAtomic(dir / sensor.folder / "sensor.yaml", cameraYaml(sensor.comment));
+        break;
+      }
+    }
+    writeTextAtomic(dir / "state_groundtruth_estimate0" / "data.csv", groundTruthCsv());
+    writeTextAtomic(dir / "state_groundtruth_estimate0" / "sensor.yaml", groundTruthYaml());
+  }
+
+private:
+  std::string cameraCsv(const std::string& suffix) const {
+    std::string s = std::string(kEurocCameraCsvHeader) + "\n";
+    for (size_t k = 0; k < ctx().traj.size(); ++k) {
+      const std::string stem = frameStem(k);
+      s += stem + "," + stem + suffix + "\n";
+    }
+    return s;
+  }
+
+  std::string cameraYaml(const char* comment) const {
+    const CameraIntrinsics& K = ctx().spec.intrinsics;
+    std::string s = fmt::format(
+        "# General sensor definitions.\nsensor_type: camera\ncomment: {}\n\n"
+        "# Sensor extrinsics wrt. the body-frame.\n{}\n",
+        comment, kIdentityTbs);
+    s += fmt::format(
+        "# Camera specific definitions.\nrate_hz: {}\nresolution: [{}, {}]\ncamera_model: pinhole\n"
+        "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
+        "integers)\ndistortion_model: radial-tangential\n"
+        "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n\n",
+        rateText(ctx().traj), K.width, K.height, formatFloat(K.fx), formatFloat(K.fy),
+        formatFloat(K.cxOpenCV()), formatFloat(K.cyOpenCV()));
+    return s;
+  }
+
+  std::string groundTruthCsv() const {
+    std::string s = std::string(kEurocGroundTruthCsvHeader) + "\n";
+    const Trajectory& traj = ctx().traj;
+    for (size_t k = 0; k < traj.size(); ++k) {
+      const Pose& T = traj.poses[k].T_world_camera;
+      const Quat q = canonicalQuat(T.q);
+      const Vec3 v = traj.velocityWorld(k);
+      s += aslStamp(traj.poses[k].t_ns);
+      for (double x : {T.t.x(), T.t.y(), T.t.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z()})
+        s.append(",").append(formatFixed(x, 9));
+      s += ",0.0,0.0,0.0,0.0,0.0,0.0\n";  // no IMU here: true biases are zero
+    }
+    return s;
+  }
+
+  static std::string groundTruthYaml() {
+    return fmt::format(
+        "# General sensor definitions.\nsensor_type: visual-inertial\n"
+        "comment: interiornet ground truth, exact rendered pose T_world_camera (R = world, "
+        "S = body = cam0), velocity of the camera centre in the world frame, zero biases\n\n"
+        "# Sensor extrinsics wrt. the body-frame (identity, the ground truth is the body "
+        "pose).\n{}",
+        kIdentityTbs);
+  }
+};
+
+}  // namespace
+
+std::string aslStamp(TimeNs t_ns) {
+  INET_CHECK(t_ns >= 0);
+  return fmt::format("{:019d}", t_ns);
+}
+
+std::unique_ptr<FormatWriter> makeAslWriter(std::shared_ptr<const SequenceContext> ctx) {
+  return std::make_unique<AslWriter>(std::move(ctx));
+}
+
+}  // namespace inet

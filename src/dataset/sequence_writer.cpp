@@ -1,1 +1,278 @@
-// (being written)
+#include "dataset/sequence_writer.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "dataset/image_encode.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace inet {
+namespace {
+
+constexpr Pass kAllPassList[] = {Pass::Rgb,   Pass::DepthZ,   Pass::DepthRay, Pass::Normal,
+                                 Pass::Label, Pass::Instance, Pass::Albedo};
+
+void validateTrajectory(const Trajectory& traj) {
+  if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
+  for (size_t k = 0; k < traj.size(); ++k) {
+    const TimedPose& p = traj.poses[k];
+    const std::string where = fmt::format("pose {}", k);
+    if (!p.T_world_camera.t.allFinite() || !p.T_world_camera.q.coeffs().allFinite() ||
+        p.T_world_camera.q.norm() < 1e-6)
+      throw InputError("trajectory", where, "pose is not finite or has a zero quaternion");
+    if (p.t_ns < 0) throw InputError("trajectory", where, "negative timestamp");
+    if (k > 0 && p.t_ns <= traj.poses[k - 1].t_ns)
+      throw InputError("trajectory", where,
+                       fmt::format("timestamps must increase strictly ({} ns after {} ns)", p.t_ns,
+                                   traj.poses[k - 1].t_ns));
+  }
+}
+
+void validateFormatNames(const std::vector<std::string>& formats) {
+  std::string valid;
+  for (const auto& n : formatNames()) valid += (valid.empty() ? "" : ", ") + n;
+  if (formats.empty()) throw InputError("", "--format", "no format given; valid formats: " + valid);
+  for (size_t i = 0; i < formats.size(); ++i) {
+    const auto names = formatNames();
+    if (std::find(names.begin(), names.end(), formats[i]) == names.end())
+      throw InputError("", "--format",
+                       fmt::format("unknown format '{}'; valid formats: {}", formats[i], valid));
+    for (size_t j = 0; j < i; ++j)
+      if (formats[j] == formats[i])
+        throw InputError("", "--format", fmt::format("format '{}' is listed twice", formats[i]));
+  }
+}
+
+template <typename T>
+void checkImage(const Image<T>& img, Pass pass, int channels, const CameraIntrinsics& K, size_t k) {
+  INET_CHECK_MSG(
+      img.width == K.width && img.height == K.height && img.channels == channels &&
+          img.data.size() == img.pixelCount() * channels,
+      fmt::format("frame {}: pass '{}' image is {}x{}x{}, expected {}x{}x{}", k, passName(pass),
+                  img.width, img.height, img.channels, K.width, K.height, channels));
+}
+
+/// A frame that does not match the spec is a caller bug (the renderer was asked for these
+/// passes at this size), not bad user input.
+void checkFrame(const Frame& f, PassMask mask, const CameraIntrinsics& K, size_t k) {
+  for (Pass p : kAllPassList)
+    INET_CHECK_MSG(
+        !has(mask, p) || has(f.passes, p),
+        fmt::format("frame {} lacks pass '{}' that the sequence writes", k, passName(p)));
+  if (has(mask, Pass::Rgb)) checkImage(f.rgb, Pass::Rgb, 3, K, k);
+  if (has(mask, Pass::DepthZ)) checkImage(f.depth_z, Pass::DepthZ, 1, K, k);
+  if (has(mask, Pass::DepthRay)) checkImage(f.depth_ray, Pass::DepthRay, 1, K, k);
+  if (has(mask, Pass::Normal)) checkImage(f.normal, Pass::Normal, 3, K, k);
+  if (has(mask, Pass::Label)) checkImage(f.label, Pass::Label, 1, K, k);
+  if (has(mask, Pass::Instance)) checkImage(f.instance, Pass::Instance, 1, K, k);
+  if (has(mask, Pass::Albedo)) checkImage(f.albedo, Pass::Albedo, 3, K, k);
+}
+
+/// Gives `dst` the bytes of `src` atomically: a hard link (no extra disk space), or a copy where
+/// the file system has no hard links.
+void linkOrCopy(const fs::path& src, const fs::path& dst) {
+  writeFileAtomic(dst, [&](const fs::path& tmp) {
+    std::error_code ec;
+    fs::create_hard_link(src, tmp, ec);
+    if (!ec) return;
+    fs::copy_file(src, tmp, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw InputError(dst.string(), "", "cannot copy " + src.string() + ": " + ec.message());
+  });
+}
+
+json cameraJson(const CameraIntrinsics& K) {
+  return {
+      {"width", K.width},
+      {"height", K.height},
+      {"lens", "pinhole"},
+      {"distortion_model", "radial-tangential"},
+      {"distortion_coefficients", {0.0, 0.0, 0.0, 0.0, 0.0}},
+      {"opencv", {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cxOpenCV()}, {"cy", K.cyOpenCV()}}},
+      {"renderer", {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cx}, {"cy", K.cy}}},
+      {"pixel_centre_convention",
+       "opencv: pixel (i, j) is centred at (i, j); this is what every calibration file of the "
+       "sequence states (sensor.yaml, camera.txt). renderer: pixel (i, j) covers [i, i+1) x "
+       "[j, j+1) and is centred at (i + 0.5, j + 0.5), so cx = cx_opencv + 0.5"},
+  };
+}
+
+json encodingsJson() {
+  return {
+      {"rgb", "8-bit sRGB (IEC 61966-2-1 OETF of linear radiance clamped to [0, 1])"},
+      {"depth_png",
+       "z-depth along the optical axis, uint16, value = round(z_m * scale), scale "
+       "1000 (asl depth0, mm) or 5000 (tum depth); 0 = no surface or too far"},
+      {"ray_depth_exr",
+       "Euclidean distance camera centre to surface, float32 metres, channel Z; "
+       "0 = no surface"},
+      {"normal_png",
+       "camera-frame unit normal, uint16 RGB, value = round((n + 1) / 2 * 65535); "
+       "(0, 0, 0) = no surface"},
+      {"label_png", "NYU40 class id, uint8, 0 = void"},
+      {"instance_png", "instance id, uint16, 0 = none"},
+      {"poses",
+       "T_world_camera: camera x right, y down, z forward (OpenCV); world right-handed, "
+       "z up, metres; quaternions Hamilton with w >= 0"},
+  };
+}
+
+}  // namespace
+
+void checkOutputFolder(const fs::path& dir) {
+  std::error_code ec;
+  if (dir.empty()) throw InputError("", "--out", "no output folder given");
+  fs::path abs = fs::absolute(dir, ec).lexically_normal();
+  if (ec) throw InputError(dir.string(), "--out", "bad path: " + ec.message());
+  if (abs.filename().empty()) abs = abs.parent_path();
+  if (fs::exists(abs, ec)) {
+    if (!fs::is_directory(abs, ec))
+      throw InputError(dir.string(), "--out", "exists and is not a folder");
+    if (::access(abs.c_str(), W_OK | X_OK) != 0)
+      throw InputError(dir.string(), "--out",
+                       std::string("folder is not writable: ") + std::strerror(errno));
+    return;
+  }
+  fs::path ancestor = abs.parent_path();
+  while (!fs::exists(ancestor, ec) && ancestor.has_parent_path() &&
+         ancestor.parent_path() != ancestor)
+    ancestor = ancestor.parent_path();
+  if (!fs::is_directory(ancestor, ec))
+    throw InputError(dir.string(), "--out",
+                     "cannot be created: " + ancestor.string() + " is not a folder");
+  if (::access(ancestor.c_str(), W_OK | X_OK) != 0)
+    throw InputError(dir.string(), "--out",
+                     "cannot be created: no write permission in " + ancestor.string());
+}
+
+SequenceWriter::SequenceWriter(SequenceSpec spec, const Trajectory& traj,
+                               const std::vector<std::string>& formats) {
+  // Phase 1: validate everything; nothing touches the disk.
+  validateFormatNames(formats);
+  if (spec.passes == 0 || (spec.passes & ~kAllPasses) != 0)
+    throw InputError("", "--passes", "no valid pass selected");
+  spec.intrinsics.validate("camera");
+  INET_CHECK_MSG(spec.meta.is_object() || spec.meta.is_null(),
+                 "SequenceSpec::meta must be an object");
+  validateTrajectory(traj);
+  ctx_ = std::make_shared<const SequenceContext>(SequenceContext{std::move(spec), traj});
+  for (const auto& name : formats) formats_.push_back(createFormat(name, ctx_));
+  const fs::path& dir = ctx_->spec.dir;
+  checkOutputFolder(dir);
+  const std::string meta = metaJson();
+
+  // Phase 2: create the folder; meta.json is the first file and doubles as a write probe.
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), "--out", "cannot create folder: " + ec.message());
+  writeTextAtomic(dir / "meta.json", meta);
+  if (ctx_->spec.remove_stale_temporaries) removeStaleTemporaries(dir);
+  // Create every image folder now, so concurrent writeFrame calls never race on mkdir.
+  for (const auto& f : formats_)
+    for (const auto& o : f->outputs()) {
+      fs::create_directories(dir / o.folder, ec);
+      if (ec)
+        throw InputError((dir / o.folder).string(), "", "cannot create folder: " + ec.message());
+    }
+}
+
+SequenceWriter::~SequenceWriter() = default;
+
+size_t SequenceWriter::frameCount() const { return ctx_->traj.size(); }
+const SequenceSpec& SequenceWriter::spec() const { return ctx_->spec; }
+
+std::vector<std::string> SequenceWriter::formats() const {
+  std::vector<std::string> names;
+  for (const auto& f : formats_) names.push_back(f->name());
+  return names;
+}
+
+std::vector<fs::path> SequenceWriter::frameFiles(size_t k) const {
+  INET_CHECK(k < frameCount());
+  std::vector<fs::path> files;
+  for (const auto& f : formats_)
+    for (auto& p : f->frameFiles(k)) files.push_back(std::move(p));
+  return files;
+}
+
+bool SequenceWriter::frameComplete(size_t k) const {
+  std::error_code ec;
+  for (const auto& p : frameFiles(k))
+    if (!fs::is_regular_file(p, ec)) return false;
+  return true;
+}
+
+void SequenceWriter::writeFrame(size_t k, const Frame& frame) const {
+  INET_CHECK_MSG(k < frameCount(), fmt::format("frame {} of {}", k, frameCount()));
+  checkFrame(frame, ctx_->spec.passes, ctx_->spec.intrinsics, k);
+  // One job per distinct encoding: outputs with the same key (ASL cam0 and TUM rgb) are encoded
+  // once and the other names get a hard link or a copy of the finished file.
+  struct Job {
+    const FrameEncoder* encoder;
+    std::vector<fs::path> paths;
+  };
+  std::vector<Job> jobs;
+  std::map<std::string, size_t> by_key;
+  for (const auto& f : formats_) {
+    const std::string stem = f->frameStem(k);
+    for (const auto& o : f->outputs()) {
+      auto [it, fresh] = by_key.emplace(o.encoder.key, jobs.size());
+      if (fresh) jobs.push_back({&o.encoder, {}});
+      jobs[it->second].paths.push_back(ctx_->spec.dir / o.folder / (stem + o.suffix));
+    }
+  }
+  // Jobs are independent: run them in parallel (TBB rethrows the first exception here).
+  tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t i) {
+    const Job& job = jobs[i];
+    job.encoder->write(job.paths[0], frame);
+    for (size_t j = 1; j < job.paths.size(); ++j) linkOrCopy(job.paths[0], job.paths[j]);
+  });
+}
+
+void SequenceWriter::finish() const {
+  std::error_code ec;
+  for (size_t k = 0; k < frameCount(); ++k)
+    for (const auto& p : frameFiles(k))
+      if (!fs::is_regular_file(p, ec))
+        throw InputError(p.string(), "",
+                         fmt::format("frame {} was not written; index files are written only "
+                                     "after every frame exists",
+                                     k));
+  for (const auto& f : formats_) f->finish();
+}
+
+std::string SequenceWriter::metaJson() const {
+  const SequenceContext& c = *ctx_;
+  json j = c.spec.meta.is_null() ? json::object() : c.spec.meta;
+  auto put = [&j](const std::string& key, json value) {
+    INET_CHECK_MSG(!j.contains(key),
+                   "SequenceSpec::meta must not set the reserved key '" + key + "'");
+    j[key] = std::move(value);
+  };
+  json passes = json::array();
+  for (Pass p : kAllPassList)
+    if (has(c.spec.passes, p)) passes.push_back(passName(p));
+  put("meta_format_version", 1);
+  put("sequence", c.sequenceName());
+  put("formats", formats());
+  put("passes", passes);
+  put("frame_count", c.traj.size());
+  put("first_timestamp_ns", c.traj.poses.front().t_ns);
+  put("last_timestamp_ns", c.traj.poses.back().t_ns);
+  put("camera", cameraJson(c.spec.intrinsics));
+  put("encodings", encodingsJson());
+  return j.dump(2) + "\n";
+}
+
+}  // namespace inet

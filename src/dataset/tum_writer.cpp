@@ -1,1 +1,94 @@
-// (being written)
+#include "dataset/tum_writer.h"
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "dataset/image_encode.h"
+
+namespace inet {
+namespace {
+
+class TumWriter final : public FormatWriter {
+public:
+  explicit TumWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
+    const PassMask passes = ctx().spec.passes;
+    if (!has(passes, Pass::Rgb) || !has(passes, Pass::DepthZ))
+      throw InputError(
+          "", "--passes",
+          "format 'tum' needs the 'rgb' and 'depth' passes (colour and z-depth images)");
+    const Trajectory& traj = ctx().traj;
+    stems_.reserve(traj.size());
+    for (size_t k = 0; k < traj.size(); ++k) {
+      stems_.push_back(tumStamp(traj.poses[k].t_ns));
+      if (k > 0 && stems_[k] == stems_[k - 1])
+        throw InputError(
+            "trajectory", fmt::format("pose {}", k),
+            fmt::format("timestamps {} ns and {} ns both round to {} s; TUM names files by "
+                        "microsecond, so frames must be at least 1 us apart",
+                        traj.poses[k - 1].t_ns, traj.poses[k].t_ns, stems_[k]));
+    }
+    addOutput("rgb", ".png", srgbPng(Pass::Rgb));
+    addOutput("depth", ".png", depthPng(Pass::DepthZ, kDepthScaleTum));
+  }
+
+  std::string name() const override { return "tum"; }
+  std::string frameStem(size_t k) const override { return stems_.at(k); }
+
+  void finish() const override {
+    const auto& dir = ctx().spec.dir;
+    const std::string file_line = "# file: '" + ctx().sequenceName() + "'\n";
+    std::string rgb = "# color images\n" + file_line + "# timestamp filename\n";
+    std::string depth = "# depth maps\n" + file_line + "# timestamp filename\n";
+    std::string assoc;
+    for (const auto& ts : stems_) {
+      rgb += fmt::format("{} rgb/{}.png\n", ts, ts);
+      depth += fmt::format("{} depth/{}.png\n", ts, ts);
+      assoc += fmt::format("{} rgb/{}.png {} depth/{}.png\n", ts, ts, ts, ts);
+    }
+    writeTextAtomic(dir / "rgb.txt", rgb);
+    writeTextAtomic(dir / "depth.txt", depth);
+    writeTextAtomic(dir / "associations.txt", assoc);
+    writeTextAtomic(dir / "groundtruth.txt", groundTruth(file_line));
+    writeTextAtomic(dir / "accelerometer.txt",
+                    "# accelerometer data\n" + file_line + "# timestamp ax ay az\n");
+    writeTextAtomic(dir / "camera.txt", cameraText());
+  }
+
+private:
+  std::string groundTruth(const std::string& file_line) const {
+    std::string s =
+        "# ground truth trajectory\n" + file_line + "# timestamp tx ty tz qx qy qz qw\n";
+    const Trajectory& traj = ctx().traj;
+    for (size_t k = 0; k < traj.size(); ++k) {
+      const Pose& T = traj.poses[k].T_world_camera;
+      const Quat q = canonicalQuat(T.q);
+      s += stems_[k];
+      for (double x : {T.t.x(), T.t.y(), T.t.z(), q.x(), q.y(), q.z(), q.w()})
+        s.append(" ").append(formatFixed(x, 9));
+      s += "\n";
+    }
+    return s;
+  }
+
+  std::string cameraText() const {
+    const CameraIntrinsics& K = ctx().spec.intrinsics;
+    return fmt::format(
+        "# fx fy cx cy k1 k2 p1 p2 k3 (pixels, OpenCV convention: pixel centres at integer "
+        "coordinates; image {}x{})\n{} {} {} {} 0.0 0.0 0.0 0.0 0.0\n",
+        K.width, K.height, formatFloat(K.fx), formatFloat(K.fy), formatFloat(K.cxOpenCV()),
+        formatFloat(K.cyOpenCV()));
+  }
+
+  std::vector<std::string> stems_;
+};
+
+}  // namespace
+
+std::string tumStamp(TimeNs t_ns) { return nsToSecondsString(t_ns, 6); }
+
+std::unique_ptr<FormatWriter> makeTumWriter(std::shared_ptr<const SequenceContext> ctx) {
+  return std::make_unique<TumWriter>(std::move(ctx));
+}
+
+}  // namespace inet

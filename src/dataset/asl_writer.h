@@ -1,0 +1,42 @@
+#pragma once
+// ASL / EuRoC MAV layout ("asl"). The sequence folder plays the role of EuRoC's "mav0" folder (no
+// extra mav0/ level); point EuRoC readers at the sequence folder itself.
+//
+//   body.yaml                                  comment only; body frame B = cam0 frame
+//   cam0/data/<t>.png        sensor.yaml data.csv   colour, 8-bit sRGB RGB
+//   depth0/data/<t>.png      sensor.yaml data.csv   z-depth, 16-bit, millimetres
+//   depth0/data/<t>.exr                             Euclidean ray depth, float metres, channel Z
+//   normal0/data/<t>.png     sensor.yaml data.csv   camera-frame normals, 16-bit RGB
+//   albedo0/data/<t>.png     sensor.yaml data.csv   diffuse albedo, 8-bit sRGB RGB
+//   label0/data/<t>_nyu.png  sensor.yaml data.csv   NYU40 class, 8-bit grey
+//   label0/data/<t>_instance.png                    instance id, 16-bit grey
+//   state_groundtruth_estimate0/data.csv sensor.yaml   17-column EuRoC ground truth
+//
+// <t> is the frame time in integer nanoseconds, zero-padded to 19 digits (EuRoC's width), used
+// both in file names and in the timestamp column. Only the passes in spec.passes are written;
+// a folder with no pass is not created. Every image folder is registered to cam0 and shares its
+// intrinsics (sensor.yaml states them in the OpenCV convention).
+#include <memory>
+#include <string>
+
+#include "core/pose.h"
+#include "dataset/format_writer.h"
+
+namespace inet {
+
+/// Header of every camera data.csv (EuRoC, verbatim).
+inline constexpr const char* kEurocCameraCsvHeader = "#timestamp [ns],filename";
+/// Header of state_groundtruth_estimate0/data.csv (EuRoC, verbatim; note the spaces).
+inline constexpr const char* kEurocGroundTruthCsvHeader =
+    "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+    "q_RS_z [], v_RS_R_x [m s^-1], v_RS_R_y [m s^-1], v_RS_R_z [m s^-1], b_w_RS_S_x [rad s^-1], "
+    "b_w_RS_S_y [rad s^-1], b_w_RS_S_z [rad s^-1], b_a_RS_S_x [m s^-2], b_a_RS_S_y [m s^-2], "
+    "b_a_RS_S_z [m s^-2]";
+
+/// "0000000001403715273" style stem: nanoseconds zero-padded to 19 digits (t_ns >= 0).
+std::string aslStamp(TimeNs t_ns);
+
+/// Factory registered as "asl".
+std::unique_ptr<FormatWriter> makeAslWriter(std::shared_ptr<const SequenceContext> ctx);
+
+}  // namespace inet

@@ -1,0 +1,167 @@
+#include "dataset/format_writer.h"
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "dataset/asl_writer.h"
+#include "dataset/image_encode.h"
+#include "dataset/image_io.h"
+#include "dataset/tum_writer.h"
+
+namespace fs = std::filesystem;
+
+namespace inet {
+namespace {
+
+struct FormatEntry {
+  const char* name;
+  FormatFactory make;
+};
+
+// The registry: one line per format.
+constexpr FormatEntry kFormats[] = {
+    {"asl", makeAslWriter},
+    {"tum", makeTumWriter},
+};
+
+/// The float image a pass is stored in.
+const ImageF Frame::*floatMember(Pass pass) {
+  switch (pass) {
+    case Pass::Rgb:
+      return &Frame::rgb;
+    case Pass::DepthZ:
+      return &Frame::depth_z;
+    case Pass::DepthRay:
+      return &Frame::depth_ray;
+    case Pass::Normal:
+      return &Frame::normal;
+    case Pass::Albedo:
+      return &Frame::albedo;
+    default:
+      break;
+  }
+  checkFailed("float pass", __FILE__, __LINE__,
+              "pass '" + passName(pass) + "' is not a float image");
+}
+
+std::string joinedFormatNames() {
+  std::string s;
+  for (const auto& n : formatNames()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+std::string SequenceContext::sequenceName() const {
+  if (!spec.name.empty()) return spec.name;
+  fs::path p = spec.dir.lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();  // "out/seq/" -> "out/seq"
+  return p.filename().string();
+}
+
+std::vector<fs::path> FormatWriter::frameFiles(size_t k) const {
+  std::vector<fs::path> files;
+  const std::string stem = frameStem(k);
+  for (const auto& o : outputs_) files.push_back(ctx_->spec.dir / o.folder / (stem + o.suffix));
+  return files;
+}
+
+void FormatWriter::addOutput(std::string folder, std::string suffix, FrameEncoder encoder) {
+  if (!has(ctx_->spec.passes, encoder.pass)) return;
+  outputs_.push_back({std::move(folder), std::move(suffix), std::move(encoder)});
+}
+
+std::vector<std::string> formatNames() {
+  std::vector<std::string> names;
+  for (const auto& e : kFormats) names.emplace_back(e.name);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::unique_ptr<FormatWriter> createFormat(const std::string& name,
+                                           std::shared_ptr<const SequenceContext> ctx) {
+  for (const auto& e : kFormats)
+    if (name == e.name) return e.make(std::move(ctx));
+  throw InputError(
+      "", "--format",
+      fmt::format("unknown format '{}'; valid formats: {}", name, joinedFormatNames()));
+}
+
+std::vector<std::string> parseFormatList(const std::string& list) {
+  std::vector<std::string> names;
+  size_t begin = 0;
+  while (begin <= list.size()) {
+    size_t end = std::min(list.find(',', begin), list.size());
+    std::string item = list.substr(begin, end - begin);
+    item.erase(std::remove(item.begin(), item.end(), ' '), item.end());
+    if (item.empty())
+      throw InputError(
+          "", "--format",
+          fmt::format("empty entry in '{}'; valid formats: {}", list, joinedFormatNames()));
+    bool known = false;
+    for (const auto& e : kFormats) known = known || item == e.name;
+    if (!known)
+      throw InputError(
+          "", "--format",
+          fmt::format("unknown format '{}'; valid formats: {}", item, joinedFormatNames()));
+    if (std::find(names.begin(), names.end(), item) != names.end())
+      throw InputError("", "--format", fmt::format("format '{}' is listed twice", item));
+    names.push_back(item);
+    begin = end + 1;
+  }
+  return names;
+}
+
+FrameEncoder srgbPng(Pass pass) {
+  const ImageF Frame::*m = floatMember(pass);
+  return {pass, "png8-srgb/" + passName(pass),
+          [m](const fs::path& p, const Frame& f) { writePng(p, encodeSrgb8(f.*m)); }};
+}
+
+FrameEncoder depthPng(Pass pass, double scale) {
+  const ImageF Frame::*m = floatMember(pass);
+  return {
+      pass, fmt::format("png16-depth-x{}/{}", scale, passName(pass)),
+      [m, scale](const fs::path& p, const Frame& f) { writePng(p, encodeDepth16(f.*m, scale)); }};
+}
+
+FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names) {
+  const ImageF Frame::*m = floatMember(pass);
+  std::string key = "exr-float";
+  for (const auto& c : channel_names) key += "-" + c;
+  return {pass, key + "/" + passName(pass),
+          [m, names = std::move(channel_names)](const fs::path& p, const Frame& f) {
+            writeExr(p, f.*m, names);
+          }};
+}
+
+FrameEncoder normalPng(Pass pass) {
+  const ImageF Frame::*m = floatMember(pass);
+  return {pass, "png16-normal/" + passName(pass),
+          [m](const fs::path& p, const Frame& f) { writePng(p, encodeNormal16(f.*m)); }};
+}
+
+FrameEncoder rawPng(Pass pass) {
+  std::string key = "png-raw/" + passName(pass);
+  if (pass == Pass::Label)
+    return {pass, key, [](const fs::path& p, const Frame& f) { writePng(p, f.label); }};
+  INET_CHECK_MSG(pass == Pass::Instance, "rawPng takes the label or instance pass");
+  return {pass, key, [](const fs::path& p, const Frame& f) { writePng(p, f.instance); }};
+}
+
+std::string formatFixed(double v, int decimals) {
+  std::string s = fmt::format("{:.{}f}", v, decimals);
+  if (!s.empty() && s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
+}
+
+std::string formatFloat(double v) {
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // 'n': nan/inf stay as they are
+  return s;
+}
+
+}  // namespace inet

@@ -1,0 +1,120 @@
+#pragma once
+// One on-disk sequence format (ASL/EuRoC, TUM RGB-D, ...) and the registry that creates formats
+// by name (STYLE.md 1.3). Several formats write side by side into one sequence folder.
+//
+// A format is mostly data: the list of image files it writes per frame (FrameOutput: folder,
+// file-name suffix, which pass, how it is encoded) and how it names frame k (frameStem). The
+// generic code in SequenceWriter writes those files; the format itself only writes its index,
+// list and calibration files in finish().
+//
+// Adding a format: one new <name>_writer.cpp with a class derived from FormatWriter and a
+// factory function, plus one line in the registry table in format_writer.cpp.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "trajectory/trajectory.h"
+
+namespace inet {
+
+/// What to write, and where. Frame k of the sequence is pose k of the trajectory.
+struct SequenceSpec {
+  std::filesystem::path dir;     ///< the sequence folder (the EuRoC "mav0" equivalent)
+  std::string name;              ///< for "# file: '<name>'" lines; empty = last part of dir
+  CameraIntrinsics intrinsics;   ///< renderer convention; files state the OpenCV one
+  PassMask passes = kAllPasses;  ///< passes written to disk (the frames must carry them)
+  nlohmann::json meta = nlohmann::json::object();  ///< caller's provenance, merged into meta.json
+  /// Delete "*.tmp-*" left by a killed run when the writer is created. With several processes
+  /// writing one folder at once (MPI ranks), only one of them may do this.
+  bool remove_stale_temporaries = true;
+};
+
+/// Everything a format may look at: the spec and the trajectory. Shared, read-only.
+struct SequenceContext {
+  SequenceSpec spec;
+  Trajectory traj;
+  /// spec.name, or the sequence folder's last component.
+  std::string sequenceName() const;
+};
+
+/// How one frame channel becomes one file. `key` names the resulting bytes: two outputs with the
+/// same key are identical files, so the sequence writer encodes once and links (or copies) the
+/// result, e.g. ASL cam0 and TUM rgb.
+struct FrameEncoder {
+  using Write = std::function<void(const std::filesystem::path&, const Frame&)>;
+  Pass pass;        ///< the frame channel it reads
+  std::string key;  ///< e.g. "png8-srgb/rgb", "png16-depth-x5000/depth"
+  Write write;      ///< encodes the channel and writes the file atomically
+};
+
+/// One image file written for every frame: <dir>/<folder>/<stem><suffix>.
+struct FrameOutput {
+  std::string folder;  ///< relative to the sequence folder, e.g. "cam0/data"
+  std::string suffix;  ///< e.g. ".png", "_nyu.png", ".exr"
+  FrameEncoder encoder;
+};
+
+class FormatWriter {
+public:
+  explicit FormatWriter(std::shared_ptr<const SequenceContext> ctx) : ctx_(std::move(ctx)) {}
+  virtual ~FormatWriter() = default;
+  FormatWriter(const FormatWriter&) = delete;
+  FormatWriter& operator=(const FormatWriter&) = delete;
+
+  /// Registry name ("asl", "tum").
+  virtual std::string name() const = 0;
+  /// File-name stem of frame k: its timestamp in this format's convention.
+  virtual std::string frameStem(size_t k) const = 0;
+  /// Writes the index, list and calibration files (atomically). Called once, after every frame
+  /// exists; must be deterministic (same inputs, same bytes).
+  virtual void finish() const = 0;
+
+  /// The per-frame image files (only passes in spec.passes), fixed at construction.
+  const std::vector<FrameOutput>& outputs() const { return outputs_; }
+  /// Paths (spec.dir / folder / stem+suffix) of the files frame k produces.
+  std::vector<std::filesystem::path> frameFiles(size_t k) const;
+
+protected:
+  const SequenceContext& ctx() const { return *ctx_; }
+  /// Adds an output if its encoder's pass is in spec.passes.
+  void addOutput(std::string folder, std::string suffix, FrameEncoder encoder);
+
+private:
+  std::shared_ptr<const SequenceContext> ctx_;
+  std::vector<FrameOutput> outputs_;
+};
+
+using FormatFactory = std::unique_ptr<FormatWriter> (*)(std::shared_ptr<const SequenceContext>);
+
+/// Registered format names, sorted.
+std::vector<std::string> formatNames();
+/// Creates a format by name. The constructor validates what this format needs (timestamps,
+/// passes) and throws InputError without writing anything. Unknown name: InputError with field
+/// "--format" listing the valid names.
+std::unique_ptr<FormatWriter> createFormat(const std::string& name,
+                                           std::shared_ptr<const SequenceContext> ctx);
+/// Splits "asl,tum" (spaces ignored) and checks each name; InputError(field "--format") for an
+/// unknown, repeated or empty entry.
+std::vector<std::string> parseFormatList(const std::string& list);
+
+// ---- helpers shared by the format writers -------------------------------------------------
+
+/// Encoders (the pass decides which Frame member is read; a pass of the wrong kind is a bug).
+FrameEncoder srgbPng(Pass pass);                 ///< Rgb, Albedo: 8-bit sRGB PNG
+FrameEncoder depthPng(Pass pass, double scale);  ///< DepthZ, DepthRay: 16-bit PNG, see depthToU16
+FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names);  ///< float32 EXR
+FrameEncoder normalPng(Pass pass);  ///< Normal: 16-bit RGB PNG, see encodeNormal16
+FrameEncoder rawPng(Pass pass);     ///< Label (8-bit), Instance (16-bit): as stored
+
+/// Fixed-point text with `decimals` digits; never "-0.000" (a tiny negative prints as zero).
+std::string formatFixed(double v, int decimals);
+/// Shortest round-trip text that always reads back as a float in YAML/JSON ("600.0", "319.5").
+std::string formatFloat(double v);
+
+}  // namespace inet

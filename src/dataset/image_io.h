@@ -1,0 +1,46 @@
+#pragma once
+// Image file I/O for the dataset writers: PNG (8- and 16-bit, grey or RGB) through libpng and
+// single-part scanline EXR (32-bit float channels) through OpenEXR.
+//
+// Every writer:
+//  - is atomic: it writes "<path>.tmp-<pid>" and renames it into place (core/atomic_file.h), so a
+//    file under its final name is always complete;
+//  - is deterministic: the same image gives the same bytes (no time chunks, no tool version, no
+//    thread-dependent compression);
+//  - reports failure (unwritable folder, full disk, bad image shape) as InputError naming the path.
+// Readers throw InputError naming the file for a missing, truncated or unexpected file.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace inet {
+
+/// Writes an 8-bit PNG: 1 channel = grey, 3 channels = RGB.
+void writePng(const std::filesystem::path& path, const ImageU8& img);
+/// Writes a 16-bit PNG: 1 channel = grey, 3 channels = RGB. Samples are stored big-endian as the
+/// PNG standard requires; the caller passes native uint16 values.
+void writePng(const std::filesystem::path& path, const ImageU16& img);
+
+/// Reads an 8-bit PNG. Palette images are expanded to RGB and grey images below 8 bits to 8 bits;
+/// an alpha channel is kept (2 or 4 channels). A 16-bit file is an error (use readPng16): depth
+/// and normal images must never be silently truncated.
+ImageU8 readPng8(const std::filesystem::path& path);
+/// Reads a 16-bit PNG (grey, grey+alpha, RGB or RGBA) into native uint16 values. An 8-bit file is
+/// an error.
+ImageU16 readPng16(const std::filesystem::path& path);
+
+/// Writes a scanline EXR with one 32-bit FLOAT channel per entry of `channel_names` (their count
+/// must equal img.channels), ZIP compression (16 scanlines per block). EXR stores channels sorted
+/// by name; readExr puts them back in the order asked for. Typical names: {"Z"}, {"R","G","B"}.
+void writeExr(const std::filesystem::path& path, const ImageF& img,
+              const std::vector<std::string>& channel_names);
+/// Reads the named channels of an EXR (any pixel type, converted to float) into an image with
+/// channel_names.size() channels in that order. A missing channel is an InputError listing those
+/// present.
+ImageF readExr(const std::filesystem::path& path, const std::vector<std::string>& channel_names);
+/// Channel names stored in an EXR file (sorted, as EXR keeps them).
+std::vector<std::string> exrChannelNames(const std::filesystem::path& path);
+
+}  // namespace inet

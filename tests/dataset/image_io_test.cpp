@@ -1,0 +1,202 @@
+// PNG and EXR round trips, byte order, determinism and failure paths of dataset/image_io.
+#include "dataset/image_io.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstring>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "dataset_test_util.h"
+
+namespace inet {
+namespace {
+
+using test::readBytes;
+using test::TempDir;
+
+template <typename T>
+Image<T> pattern(int w, int h, int c, int mul) {
+  Image<T> img(w, h, c);
+  for (size_t i = 0; i < img.data.size(); ++i)
+    img.data[i] = static_cast<T>((i * mul + i / 7) & 0xffff);
+  return img;
+}
+
+uint32_t be32(const std::string& s, size_t at) {
+  auto b = [&](size_t i) { return static_cast<uint32_t>(static_cast<unsigned char>(s[at + i])); };
+  return b(0) << 24 | b(1) << 16 | b(2) << 8 | b(3);
+}
+
+/// The raw (filtered) scanlines of a PNG, by inflating its IDAT chunks with zlib directly.
+std::string inflatedIdat(const std::string& png) {
+  std::string z;
+  for (size_t at = 8; at + 8 <= png.size();) {
+    uint32_t len = be32(png, at);
+    if (png.compare(at + 4, 4, "IDAT") == 0) z += png.substr(at + 8, len);
+    at += 12 + len;
+  }
+  std::string out(1 << 16, '\0');
+  uLongf out_len = out.size();
+  EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(out.data()), &out_len,
+                       reinterpret_cast<const Bytef*>(z.data()), z.size()),
+            Z_OK);
+  out.resize(out_len);
+  return out;
+}
+
+TEST(ImageIo, Png8RoundTripGreyAndRgb) {
+  TempDir dir("png8");
+  for (int c : {1, 3}) {
+    ImageU8 img = pattern<uint8_t>(37, 19, c, 31);
+    auto p = dir / ("img" + std::to_string(c) + ".png");
+    writePng(p, img);
+    EXPECT_EQ(readPng8(p), img) << c << " channels";
+  }
+}
+
+TEST(ImageIo, Png16RoundTripGreyAndRgb) {
+  TempDir dir("png16");
+  for (int c : {1, 3}) {
+    ImageU16 img = pattern<uint16_t>(33, 21, c, 2741);
+    img.data[0] = 65535;
+    img.data[1] = 256;
+    auto p = dir / ("img" + std::to_string(c) + ".png");
+    writePng(p, img);
+    EXPECT_EQ(readPng16(p), img) << c << " channels";
+  }
+}
+
+TEST(ImageIo, Png16IsBigEndianOnDisk) {
+  // Decoded without libpng: the IHDR says 16-bit grey and the first scanline holds 0x12 0x34.
+  TempDir dir("png16be");
+  ImageU16 img(1, 1, 1, 0x1234);
+  writePng(dir / "one.png", img);
+  std::string bytes = readBytes(dir / "one.png");
+  ASSERT_EQ(bytes.compare(12, 4, "IHDR"), 0);
+  EXPECT_EQ(static_cast<int>(bytes[24]), 16);  // bit depth
+  EXPECT_EQ(static_cast<int>(bytes[25]), 0);   // colour type grey
+  std::string raw = inflatedIdat(bytes);
+  ASSERT_EQ(raw.size(), 3u);  // filter byte + one 2-byte sample
+  // NONE (0), SUB (1) and UP (2) leave the first sample of the first row unchanged.
+  EXPECT_GE(raw[0], 0);
+  EXPECT_LE(raw[0], 2);
+  EXPECT_EQ(static_cast<unsigned char>(raw[1]), 0x12);
+  EXPECT_EQ(static_cast<unsigned char>(raw[2]), 0x34);
+}
+
+TEST(ImageIo, PngWritesAreDeterministicAndLeaveNoTemporary) {
+  TempDir dir("pngdet");
+  ImageU16 img = pattern<uint16_t>(64, 48, 3, 977);
+  writePng(dir / "a.png", img);
+  writePng(dir / "b.png", img);
+  EXPECT_EQ(readBytes(dir / "a.png"), readBytes(dir / "b.png"));
+  std::string bytes = readBytes(dir / "a.png");
+  EXPECT_EQ(bytes.find("tIME"), std::string::npos) << "no time stamp chunk";
+  size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    ++files;
+    EXPECT_FALSE(isTemporaryName(e.path().filename().string()));
+  }
+  EXPECT_EQ(files, 2u);
+}
+
+TEST(ImageIo, PngWriteIntoUnwritablePlaceThrowsInputError) {
+  TempDir dir("pngfail");
+  std::ofstream(dir / "blocker") << "a file, not a folder";
+  ImageU8 img(4, 4, 1, 7);
+  try {
+    writePng(dir / "blocker" / "x.png", img);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("blocker"), std::string::npos) << e.what();
+  }
+  ImageU8 two(4, 4, 2);
+  EXPECT_THROW(writePng(dir / "two.png", two), InputError);  // 2 channels are not supported
+  EXPECT_FALSE(std::filesystem::exists(dir / "two.png"));
+}
+
+TEST(ImageIo, PngWriteErrorInsideLibpngBecomesInputError) {
+  // /dev/full accepts the open and fails every write: libpng's own error path (longjmp) runs.
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "/dev/full not available";
+  // writeFileAtomic writes to "<path>.tmp-<pid>", so aim a symlink with that name at /dev/full.
+  TempDir dir("pngfull");
+  auto target = dir / "full.png";
+  std::filesystem::path tmp = target;
+  tmp += ".tmp-" + std::to_string(::getpid());
+  std::filesystem::create_symlink("/dev/full", tmp);
+  ImageU8 img(256, 256, 3);  // incompressible noise, far more than one stdio buffer
+  uint32_t state = 12345;
+  for (auto& v : img.data) v = static_cast<uint8_t>((state = state * 1664525u + 1013904223u) >> 24);
+  try {
+    writePng(target, img);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("full.png"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(target));
+  EXPECT_FALSE(std::filesystem::exists(tmp)) << "the temporary is removed";
+}
+
+TEST(ImageIo, PngReadErrors) {
+  TempDir dir("pngread");
+  EXPECT_THROW(readPng8(dir / "missing.png"), InputError);
+  std::ofstream(dir / "text.png") << "definitely not a png";
+  EXPECT_THROW(readPng8(dir / "text.png"), InputError);
+
+  writePng(dir / "d8.png", pattern<uint8_t>(40, 30, 3, 7));
+  writePng(dir / "d16.png", pattern<uint16_t>(40, 30, 1, 7));
+  EXPECT_THROW(readPng16(dir / "d8.png"), InputError) << "8-bit file read as 16-bit";
+  EXPECT_THROW(readPng8(dir / "d16.png"), InputError) << "16-bit file read as 8-bit";
+
+  // Truncated in the middle of the image data: libpng reports it through longjmp.
+  std::string bytes = readBytes(dir / "d8.png");
+  std::ofstream(dir / "cut.png", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  try {
+    readPng8(dir / "cut.png");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.png"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImageIo, ExrRoundTripKeepsChannelOrder) {
+  TempDir dir("exr");
+  ImageF z(31, 17, 1);
+  for (size_t i = 0; i < z.data.size(); ++i) z.data[i] = 0.25f + 0.001f * i;
+  z.data[3] = 0.0f;
+  writeExr(dir / "z.exr", z, {"Z"});
+  EXPECT_EQ(readExr(dir / "z.exr", {"Z"}), z);
+  EXPECT_EQ(exrChannelNames(dir / "z.exr"), std::vector<std::string>{"Z"});
+
+  ImageF rgb(9, 5, 3);
+  for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] = static_cast<float>(i % 3) + 0.5f * i;
+  writeExr(dir / "rgb.exr", rgb, {"R", "G", "B"});
+  EXPECT_EQ(readExr(dir / "rgb.exr", {"R", "G", "B"}), rgb);
+  ImageF g = readExr(dir / "rgb.exr", {"G"});
+  for (size_t p = 0; p < g.pixelCount(); ++p) EXPECT_EQ(g.data[p], rgb.data[3 * p + 1]);
+}
+
+TEST(ImageIo, ExrIsDeterministicAndReportsMissingChannels) {
+  TempDir dir("exrdet");
+  ImageF z(64, 40, 1, 1.5f);
+  writeExr(dir / "a.exr", z, {"Z"});
+  writeExr(dir / "b.exr", z, {"Z"});
+  EXPECT_EQ(readBytes(dir / "a.exr"), readBytes(dir / "b.exr"));
+  try {
+    readExr(dir / "a.exr", {"R"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("lacks channel(s) R"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("it has: Z"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(writeExr(dir / "c.exr", z, {"R", "G"}), InputError);
+  EXPECT_THROW(readExr(dir / "missing.exr", {"Z"}), InputError);
+  std::ofstream(dir / "junk.exr") << "junk";
+  EXPECT_THROW(readExr(dir / "junk.exr", {"Z"}), InputError);
+}
+
+}  // namespace
+}  // namespace inet
