@@ -29,7 +29,9 @@ struct SequenceSpec {
   std::string name;              ///< for "# file: '<name>'" lines; empty = last part of dir
   CameraIntrinsics intrinsics;   ///< renderer convention; files state the OpenCV one
   PassMask passes = kAllPasses;  ///< passes written to disk (the frames must carry them)
-  nlohmann::json meta = nlohmann::json::object();  ///< caller's provenance, merged into meta.json
+  /// Caller's provenance (seed, versions, settings), merged into meta.json. Must be an object and
+  /// must not use the writer's own keys (docs/output.md section 6); doing so is a bug (aborts).
+  nlohmann::json meta = nlohmann::json::object();
   /// Delete "*.tmp-*" left by a killed run when the writer is created. With several processes
   /// writing one folder at once (MPI ranks), only one of them may do this.
   bool remove_stale_temporaries = true;

@@ -25,13 +25,12 @@ namespace {
 
 // ---- PNG settings --------------------------------------------------------------------------
 // zlib level 1 and the UP filter on every row. Measured on a 640x480 frame of the built-in room
-// (docs/output.md, "PNG settings"): against libpng's default (level 6, adaptive choice among all
-// five filters per row) this writes the colour image ~6x faster (11 ms vs 67 ms at 64 spp) for a
-// file ~5% larger, depth ~7x faster for 60% more bytes (78 KB vs 49 KB). UP was the best single
-// filter on every pass (colour, albedo, depth, normals, labels, instances): the renders are
-// piecewise smooth with long vertical coherence, and UP costs one subtraction per byte. Higher
-// levels buy 2-10% at 1.5-3x the time; Z_RLE helped only the noisy colour images and doubled depth
-// files.
+// (docs/output.md section 9): against libpng's default (level 6, adaptive choice among all five
+// filters per row) this writes the colour image ~6x faster (11 ms vs 67 ms at 64 spp) for a file
+// ~5% larger, and depth ~7x faster for 60% more bytes (78 KB vs 49 KB). UP costs what SUB costs
+// (one subtraction per byte), beat SUB on every pass and was within 3% of the smallest single
+// filter; adaptive filtering cost 1.25-5x the time for 1-3% smaller files. Higher levels
+// shrink colour, most of the bytes, by under 2%.
 constexpr int kPngZlibLevel = 1;
 constexpr int kPngFilter = PNG_FILTER_UP;
 
