@@ -87,6 +87,9 @@ std::vector<Case> cases() {
   };
 }
 
+// Readable names in test listings instead of a byte dump.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
 class BadInput : public ::testing::TestWithParam<Case> {};
 
 TEST_P(BadInput, FailsWithOneLineMessageAndWritesNothing) {
