@@ -5,7 +5,9 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: demo test build setup configure bench clean
+FUZZ_SECONDS ?= 20
+
+.PHONY: demo test build setup configure bench fuzz clean
 
 setup:
 	@bash scripts/setup.sh
@@ -25,6 +27,20 @@ test: build
 
 bench: build
 	@$(BUILD)/apps/interiornet bench --json
+
+# libFuzzer on the parsers of our own formats (clang, ASan + UBSan), FUZZ_SECONDS each.
+fuzz:
+	@bash scripts/setup.sh fuzz
+	@cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DINET_FUZZ=ON -DINET_BUILD_TESTS=OFF >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_tum_trajectory fuzz_camera_json
+	@for t in layout tum_trajectory camera_json; do \
+	  mkdir -p build-fuzz/corpus/$$t && cp -n fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ ; \
+	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
+	  build-fuzz/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=0 build-fuzz/corpus/$$t \
+	    2>build-fuzz/fuzz_$$t.log || { tail -40 build-fuzz/fuzz_$$t.log; exit 1; }; \
+	  grep -E "^#[0-9]+.*DONE" build-fuzz/fuzz_$$t.log | tail -1; \
+	done
 
 clean:
 	@rm -rf $(BUILD)

@@ -47,12 +47,13 @@ Vec3 vec3(const json& j, const std::string& key, const std::string& path) {
 }
 }  // namespace
 
-CameraFile loadCameraJson(const std::string& path) {
-  std::string text = readTextFile(path);
+CameraFile loadCameraJson(const std::string& path) { return parseCameraJson(readTextFile(path), path); }
+
+CameraFile parseCameraJson(const std::string& text, const std::string& path) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for huge numbers (fuzzer)
     throw InputError(path, "", std::string("malformed JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(path, "", "top level must be an object");
@@ -60,6 +61,8 @@ CameraFile loadCameraJson(const std::string& path) {
   CameraIntrinsics& k = cam.intrinsics;
   double w = number(j, "width", path), h = number(j, "height", path);
   if (w != std::floor(w) || h != std::floor(h)) throw InputError(path, "width/height", "must be integers");
+  if (!(w >= 1 && w <= 32768)) throw InputError(path, "width", "must be in 1..32768");
+  if (!(h >= 1 && h <= 32768)) throw InputError(path, "height", "must be in 1..32768");
   k.width = static_cast<int>(w);
   k.height = static_cast<int>(h);
   k.fx = number(j, "fx", path);

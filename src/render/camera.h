@@ -41,5 +41,7 @@ struct CameraFile {
   Pose T_world_camera;
 };
 CameraFile loadCameraJson(const std::string& path);
+/// The same on text in memory; `path` only names the source in error messages.
+CameraFile parseCameraJson(const std::string& text, const std::string& path);
 
 }  // namespace inet

@@ -49,8 +49,9 @@ bool parseSecondsToNs(const std::string& s, TimeNs& out) {
   return true;
 }
 
-Trajectory readTumTrajectory(const std::string& path) {
-  std::string text = readTextFile(path);
+Trajectory readTumTrajectory(const std::string& path) { return parseTumTrajectory(readTextFile(path), path); }
+
+Trajectory parseTumTrajectory(const std::string& text, const std::string& path) {
   Trajectory traj;
   std::istringstream in(text);
   std::string line;

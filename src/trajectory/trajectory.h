@@ -26,6 +26,8 @@ struct Trajectory {
 /// tabs count as spaces). Throws InputError naming the file and line for a malformed line, a
 /// non-unit quaternion (|q| off by > 1e-3), non-increasing timestamps, or an empty file.
 Trajectory readTumTrajectory(const std::string& path);
+/// The same rules on text in memory; `path` only names the source in error messages.
+Trajectory parseTumTrajectory(const std::string& text, const std::string& path);
 /// Parses seconds text such as "1305031102.175304" to exact nanoseconds (no double rounding).
 /// Returns false if `s` is not a plain decimal number.
 bool parseSecondsToNs(const std::string& s, TimeNs& out);

@@ -70,3 +70,16 @@ TEST(Passes, ParseList) {
 
 }  // namespace
 }  // namespace inet
+
+namespace inet {
+namespace {
+// Found by fuzz_camera_json: a number too large for a double made nlohmann throw out_of_range,
+// which escaped as an unknown exception instead of an InputError.
+TEST(Camera, HugeNumberIsAnInputError) {
+  EXPECT_THROW(parseCameraJson("{\"width\": 3e3333330}", "cam.json"), InputError);
+  EXPECT_THROW(parseCameraJson("{\"width\": 1e300, \"height\": 4, \"fx\": 1, \"fy\": 1, \"position\": [0,0,0], "
+                               "\"look_at\": [1,0,0]}", "cam.json"),
+               InputError);
+}
+}  // namespace
+}  // namespace inet
