@@ -39,6 +39,24 @@ Scene furnace(float albedo, float emission) {
   return s;
 }
 
+CameraIntrinsics smallCamera(int w, int h, double f) {
+  CameraIntrinsics K;
+  K.width = w;
+  K.height = h;
+  K.fx = K.fy = f;
+  K.cx = w / 2.0;
+  K.cy = h / 2.0;
+  return K;
+}
+
+RenderOptions rgbOnly(int spp, int max_bounces) {
+  RenderOptions opt;
+  opt.spp = spp;
+  opt.max_bounces = max_bounces;
+  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  return opt;
+}
+
 double meanOf(const ImageF& img) {
   double sum = 0;
   for (float v : img.data) sum += v;
@@ -49,16 +67,8 @@ double meanOf(const ImageF& img) {
 TEST(PathTracer, FurnaceConvergesToAnalyticRadiance) {
   Scene s = furnace(0.5f, 1.0f);
   Renderer r(s);
-  CameraIntrinsics K;
-  K.width = 64;
-  K.height = 48;
-  K.fx = K.fy = 60;
-  K.cx = 32;
-  K.cy = 24;
-  RenderOptions opt;
-  opt.spp = 64;
-  opt.max_bounces = 64;
-  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  CameraIntrinsics K = smallCamera(64, 48, 60);
+  RenderOptions opt = rgbOnly(64, 64);
   Frame f;
   r.render(K, Pose::lookAt(Vec3(0.3, -0.2, 1.1), Vec3(1, 1, 0.8), Vec3::UnitZ()), opt, 0, f);
   EXPECT_NEAR(meanOf(f.rgb), 2.0, 0.02);
@@ -68,16 +78,8 @@ TEST(PathTracer, FurnaceConvergesToAnalyticRadiance) {
 TEST(PathTracer, SingleBounceFurnace) {
   Scene s = furnace(0.8f, 0.5f);
   Renderer r(s);
-  CameraIntrinsics K;
-  K.width = 48;
-  K.height = 32;
-  K.fx = K.fy = 40;
-  K.cx = 24;
-  K.cy = 16;
-  RenderOptions opt;
-  opt.spp = 64;
-  opt.max_bounces = 1;
-  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  CameraIntrinsics K = smallCamera(48, 32, 40);
+  RenderOptions opt = rgbOnly(64, 1);
   Frame f;
   r.render(K, Pose::lookAt(Vec3(-0.5, 0.2, 0.9), Vec3(1, 0, 1.2), Vec3::UnitZ()), opt, 0, f);
   EXPECT_NEAR(meanOf(f.rgb), 0.5 * 1.8, 0.009);
@@ -106,14 +108,9 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
             35, 2};
   s.objects = {fl, li};
   Renderer r(s);
-  CameraIntrinsics K;
-  K.width = K.height = 8;
-  K.fx = K.fy = 4000;  // tiny field of view: every pixel sees the floor right under the light
-  K.cx = K.cy = 4;
-  RenderOptions opt;
-  opt.spp = 4096;
-  opt.max_bounces = 1;
-  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  // tiny field of view: every pixel sees the floor right under the light
+  CameraIntrinsics K = smallCamera(8, 8, 4000);
+  RenderOptions opt = rgbOnly(4096, 1);
   Frame f;
   // camera beside the light, looking straight down at the origin
   Pose pose = Pose::lookAt(Vec3(0, 0.0001, 1.0), Vec3(0, 0, 0), Vec3::UnitY());
@@ -135,14 +132,9 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
 TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   Scene s = furnace(0.7f, 0.3f);
   Renderer r(s);
-  CameraIntrinsics K;
-  K.width = 40;
-  K.height = 30;
-  K.fx = K.fy = 30;
-  K.cx = 20;
-  K.cy = 15;
-  RenderOptions opt;
-  opt.spp = 4;
+  CameraIntrinsics K = smallCamera(40, 30, 30);
+  RenderOptions opt = rgbOnly(4, 8);
+  opt.passes = kAllPasses;
   opt.seed = 1234;
   Pose pose = Pose::lookAt(Vec3(0.1, 0.1, 1.0), Vec3(1, 1, 1.0), Vec3::UnitZ());
   Frame a, b;

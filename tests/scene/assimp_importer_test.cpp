@@ -15,6 +15,7 @@ namespace {
 
 using test::fixture;
 using test::TempDir;
+using test::errorOf;
 
 int id(const char* name) { return *nyu40FromName(name); }
 
@@ -37,15 +38,6 @@ Vec3 worldNormal(const Scene& s, const Object& o, int t) {
   return (b - a).cross(c - a).normalized();
 }
 
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
 
 TEST(AssimpImporter, ObjObjectsMaterialsAndLabels) {
   ImportReport report;

@@ -10,9 +10,12 @@
 
 #include "core/error.h"
 #include "scene/nyu40.h"
+#include "scene_test_util.h"
 
 namespace inet {
 namespace {
+
+using test::errorOf;
 
 Vec3 vertex(const Mesh& m, const Tri& t, int k) { return m.positions[t[k]].cast<double>(); }
 
@@ -111,16 +114,6 @@ TEST(Primitives, SphereIsAnalytic) {
   EXPECT_EQ(makePrimitive("sphere", {}, "t", "s").sphere_radius, 0.5f);
 }
 
-/// Message of the InputError thrown by `f`, or "" when nothing was thrown.
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
 
 TEST(Primitives, BadParametersNameTheField) {
   EXPECT_NE(errorOf([] { makePrimitive("cylinder", {{"segments", 2}}, "f.json", "m"); })

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/error.h"
 #include "scene/scene.h"
 
 namespace inet::test {
@@ -20,6 +21,17 @@ inline std::filesystem::path fixture(const std::string& name) {
 }
 
 /// ../shared (benchmark scene, public data sets), absent on some machines.
+/// Message of the InputError thrown by `f`, or "" when nothing was thrown.
+template <class F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
 inline std::filesystem::path sharedDir() { return std::filesystem::path(INET_SHARED_DIR); }
 
 /// A fresh folder under the system temp folder, removed with everything in it at scope exit.
