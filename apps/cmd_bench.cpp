@@ -30,7 +30,9 @@ struct BenchArgs {
   bool json = false;
 };
 
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
 
 double peakRssMb() {
   rusage ru{};
@@ -64,7 +66,8 @@ void runBench(const BenchArgs& a) {
   Frame frame;
   renderer.renderGroundTruth(K, cam.T_world_camera, kGroundTruthPasses, frame);  // warm-up
   auto t3 = Clock::now();
-  for (int i = 0; i < a.gt_frames; ++i) renderer.renderGroundTruth(K, cam.T_world_camera, kGroundTruthPasses, frame);
+  for (int i = 0; i < a.gt_frames; ++i)
+    renderer.renderGroundTruth(K, cam.T_world_camera, kGroundTruthPasses, frame);
   auto t4 = Clock::now();
 
   RenderOptions opt;
@@ -94,8 +97,8 @@ void runBench(const BenchArgs& a) {
     fmt::print("scene            {}\n", out["scene"].get<std::string>());
     fmt::print("scene load/build {:.1f} ms / {:.1f} ms ({} triangles)\n", seconds(t0, t1) * 1e3,
                seconds(t1, t2) * 1e3, scene.triangleCount());
-    fmt::print("ground truth     {:.1f} frames/s at {}x{} (6 passes, {} threads)\n", a.gt_frames / gt_s,
-               K.width, K.height, limit.threads());
+    fmt::print("ground truth     {:.1f} frames/s at {}x{} (6 passes, {} threads)\n",
+               a.gt_frames / gt_s, K.width, K.height, limit.threads());
     fmt::print("path tracing     {:.3f} Msamples/s ({} spp in {:.2f} s)\n",
                K.width * K.height * a.spp / pt_s / 1e6, a.spp, pt_s);
     fmt::print("peak memory      {:.0f} MB\n", peakRssMb());
@@ -105,13 +108,17 @@ void runBench(const BenchArgs& a) {
 }  // namespace
 
 void registerBench(CLI::App& app) {
-  auto* cmd = app.add_subcommand("bench", "Measure scene build, ground-truth and path-tracing speed");
+  auto* cmd =
+      app.add_subcommand("bench", "Measure scene build, ground-truth and path-tracing speed");
   auto a = std::make_shared<BenchArgs>();
-  cmd->add_option("--bench-dir", a->bench_dir, "folder with room.obj and camera.json (default ../shared/bench)");
+  cmd->add_option("--bench-dir", a->bench_dir,
+                  "folder with room.obj and camera.json (default ../shared/bench)");
   cmd->add_option("--gt-frames", a->gt_frames, "ground-truth frames to time (default 100)");
   cmd->add_option("--spp", a->spp, "samples per pixel of the timed path-traced frame (default 4)");
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
-  cmd->add_flag("--json", a->json, "print one JSON object (gt_fps, pt_samples_per_s, scene_build_ms, peak_rss_mb, ...)");
+  cmd->add_flag(
+      "--json", a->json,
+      "print one JSON object (gt_fps, pt_samples_per_s, scene_build_ms, peak_rss_mb, ...)");
   cmd->callback([a] { runBench(*a); });
 }
 

@@ -23,7 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 
 volatile std::sig_atomic_t g_stop = 0;
-extern "C" void onSignal(int) { g_stop = 1; }
+extern "C" void onSignal(int) {
+  g_stop = 1;
+}
 
 struct GenerateArgs {
   SceneArgs scene;
@@ -56,15 +58,17 @@ std::vector<std::string> splitList(const std::string& s) {
 Trajectory loadTrajectory(const GenerateArgs& a) {
   if (a.trajectory.empty()) {
     if (!a.scene.isDefault())
-      throw InputError(a.scene.path, "--trajectory",
-                       "required with --layout (the built-in camera path only fits the built-in room)");
+      throw InputError(
+          a.scene.path, "--trajectory",
+          "required with --layout (the built-in camera path only fits the built-in room)");
     return builtinTrajectory(a.frames, a.fps);
   }
   Trajectory traj = readTumTrajectory(a.trajectory);
   if (a.frames_set) {
     if (static_cast<size_t>(a.frames) > traj.size())
-      throw InputError(a.trajectory, "--frames",
-                       fmt::format("asks for {} frames but the trajectory has {} poses", a.frames, traj.size()));
+      throw InputError(
+          a.trajectory, "--frames",
+          fmt::format("asks for {} frames but the trajectory has {} poses", a.frames, traj.size()));
     traj.poses.resize(a.frames);
   }
   return traj;
@@ -74,8 +78,10 @@ void validateArgs(const GenerateArgs& a) {
   if (a.frames < 1) throw InputError("", "--frames", "must be >= 1");
   if (!(a.fps > 0 && a.fps <= 10000)) throw InputError("", "--fps", "must be in (0, 10000]");
   if (a.spp < 1 || a.spp > 1 << 20) throw InputError("", "--spp", "must be in 1..1048576");
-  if (a.max_bounces < 0 || a.max_bounces > 1000) throw InputError("", "--max-bounces", "must be in 0..1000");
-  if (a.sequence.empty() || a.sequence.find('/') != std::string::npos || a.sequence == "." || a.sequence == "..")
+  if (a.max_bounces < 0 || a.max_bounces > 1000)
+    throw InputError("", "--max-bounces", "must be in 0..1000");
+  if (a.sequence.empty() || a.sequence.find('/') != std::string::npos || a.sequence == "." ||
+      a.sequence == "..")
     throw InputError("", "--sequence", "must be a plain folder name");
 }
 
@@ -88,8 +94,11 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                                                 : fs::path(a.scene.path).filename().string()}};
   m["trajectory"] = a.trajectory.empty() ? std::string("built-in orbit of the default room")
                                          : fs::path(a.trajectory).filename().string();
-  m["render"] = {{"integrator", opt.integrator}, {"spp", opt.spp}, {"max_bounces", opt.max_bounces},
-                 {"pixel_filter", "box, 1 pixel"}, {"rgb", "linear radiance -> clamp -> sRGB 8-bit"}};
+  m["render"] = {{"integrator", opt.integrator},
+                 {"spp", opt.spp},
+                 {"max_bounces", opt.max_bounces},
+                 {"pixel_filter", "box, 1 pixel"},
+                 {"rgb", "linear radiance -> clamp -> sRGB 8-bit"}};
   m["seed"] = opt.seed;
   m["fps"] = a.fps;
   return m;
@@ -128,7 +137,8 @@ void runGenerate(const GenerateArgs& a) {
   size_t skipped = 0;
   for (size_t k = 0; k < traj.size(); ++k)
     if (writer.frameComplete(k)) ++skipped;
-  if (skipped > 0) std::fprintf(stderr, "resuming: %zu of %zu frames already complete\n", skipped, traj.size());
+  if (skipped > 0)
+    std::fprintf(stderr, "resuming: %zu of %zu frames already complete\n", skipped, traj.size());
 
   ProgressBar bar(static_cast<int64_t>(traj.size()), "frames", a.progress);
   Frame frame;
@@ -136,7 +146,8 @@ void runGenerate(const GenerateArgs& a) {
   for (size_t k = 0; k < traj.size(); ++k) {
     if (g_stop) {
       bar.finish();
-      std::fprintf(stderr, "interrupted after %zu of %zu frames; rerun the same command to resume\n", done,
+      std::fprintf(stderr,
+                   "interrupted after %zu of %zu frames; rerun the same command to resume\n", done,
                    traj.size());
       throw CLI::RuntimeError(130);
     }
@@ -163,15 +174,21 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--trajectory", a->trajectory,
                   "TUM trajectory file 'timestamp tx ty tz qx qy qz qw' (T_world_camera, OpenCV "
                   "camera axes); default: the built-in orbit of the built-in room");
-  cmd->add_option("--frames", a->frames, "number of frames (default 25; with --trajectory: the first N poses)")
+  cmd->add_option("--frames", a->frames,
+                  "number of frames (default 25; with --trajectory: the first N poses)")
       ->each([a](const std::string&) { a->frames_set = true; });
   cmd->add_option("--fps", a->fps, "frame rate of the built-in trajectory (default 25)");
   cmd->add_option("--spp", a->spp, "path-traced samples per pixel (default 16)");
-  cmd->add_option("--max-bounces", a->max_bounces, "maximum scattering events per path (default 8)");
+  cmd->add_option("--max-bounces", a->max_bounces,
+                  "maximum scattering events per path (default 8)");
   cmd->add_option("--seed", a->seed, "random seed; same seed, same bytes (default 0)");
-  cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0); never changes the output");
-  cmd->add_option("--passes", a->passes, "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, or all (default all)");
-  cmd->add_option("--format", a->formats, "comma list of output layouts: asl, tum (default asl,tum)");
+  cmd->add_option("--threads", a->threads,
+                  "worker threads, 0 = all cores (default 0); never changes the output");
+  cmd->add_option(
+      "--passes", a->passes,
+      "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, or all (default all)");
+  cmd->add_option("--format", a->formats,
+                  "comma list of output layouts: asl, tum (default asl,tum)");
   cmd->add_option("--width", a->K.width, "image width in pixels (default 640)");
   cmd->add_option("--height", a->K.height, "image height in pixels (default 480)");
   cmd->add_option("--fx", a->K.fx, "focal length in pixels (default 600)");
@@ -183,7 +200,8 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--cy", a->K.cy, "principal point, as --cx (default height/2)")
       ->each([a](const std::string&) { a->cy_set = true; });
   cmd->add_option("--sequence", a->sequence, "sequence folder name (default seq_000)");
-  cmd->add_option("--out", a->out, "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
+  cmd->add_option("--out", a->out,
+                  "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");
   cmd->callback([a] { runGenerate(*a); });
 }

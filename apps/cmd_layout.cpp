@@ -21,12 +21,13 @@ void showScene(const Scene& s) {
   }
   for (const auto& [inst, label] : instances) ++per_class[label];
   fmt::print("layout     {}\n", s.name);
-  fmt::print("meshes     {} ({} triangles placed in the world)\n", s.meshes.size(), s.triangleCount());
+  fmt::print("meshes     {} ({} triangles placed in the world)\n", s.meshes.size(),
+             s.triangleCount());
   fmt::print("materials  {}\n", s.materials.size());
-  fmt::print("objects    {} parts in {} instances, {} emissive, {} point lights\n", s.objects.size(),
-             instances.size(), emitters, s.point_lights.size());
-  fmt::print("bounds     x [{:.3f}, {:.3f}]  y [{:.3f}, {:.3f}]  z [{:.3f}, {:.3f}] m\n", lo.x(), hi.x(),
-             lo.y(), hi.y(), lo.z(), hi.z());
+  fmt::print("objects    {} parts in {} instances, {} emissive, {} point lights\n",
+             s.objects.size(), instances.size(), emitters, s.point_lights.size());
+  fmt::print("bounds     x [{:.3f}, {:.3f}]  y [{:.3f}, {:.3f}]  z [{:.3f}, {:.3f}] m\n", lo.x(),
+             hi.x(), lo.y(), hi.y(), lo.z(), hi.z());
   fmt::print("instances per NYU40 class:\n");
   for (const auto& [label, count] : per_class)
     fmt::print("  {:>2} {:<16} {}\n", label, nyu40Name(label), count);
@@ -35,9 +36,11 @@ void showScene(const Scene& s) {
 }  // namespace
 
 void registerLayout(CLI::App& app) {
-  auto* layout = app.add_subcommand("layout", "Inspect layouts (generate, import and stats come with the layout stage)");
+  auto* layout = app.add_subcommand(
+      "layout", "Inspect layouts (generate, import and stats come with the layout stage)");
   layout->require_subcommand(1);
-  auto* show = layout->add_subcommand("show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
+  auto* show = layout->add_subcommand(
+      "show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
   auto args = std::make_shared<SceneArgs>();
   args->addTo(*show);
   show->callback([args] { showScene(args->load()); });

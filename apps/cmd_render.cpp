@@ -30,7 +30,8 @@ struct RenderArgs {
 void runRender(const RenderArgs& a) {
   std::filesystem::path out(a.out);
   std::string ext = out.extension().string();
-  if (ext != ".png" && ext != ".exr") throw InputError(a.out, "--out", "must end in .png (sRGB 8-bit) or .exr (linear float)");
+  if (ext != ".png" && ext != ".exr")
+    throw InputError(a.out, "--out", "must end in .png (sRGB 8-bit) or .exr (linear float)");
   if (a.spp < 1) throw InputError("", "--spp", "must be >= 1");
   if (a.max_bounces < 0) throw InputError("", "--max-bounces", "must be >= 0");
   PassMask pass = parsePassList(a.pass, "render");
@@ -54,15 +55,21 @@ void runRender(const RenderArgs& a) {
   Frame f;
   renderer.render(cam.intrinsics, cam.T_world_camera, opt, 0, f);
   ImageF img;
-  if (has(pass, Pass::Rgb)) img = f.rgb;
-  else if (has(pass, Pass::Albedo)) img = f.albedo;
-  else if (has(pass, Pass::Normal)) img = f.normal;
-  else if (has(pass, Pass::DepthZ)) img = f.depth_z;
-  else if (has(pass, Pass::DepthRay)) img = f.depth_ray;
-  else throw InputError("", "--pass", "label/instance images: use 'generate' (integer PNGs)");
+  if (has(pass, Pass::Rgb))
+    img = f.rgb;
+  else if (has(pass, Pass::Albedo))
+    img = f.albedo;
+  else if (has(pass, Pass::Normal))
+    img = f.normal;
+  else if (has(pass, Pass::DepthZ))
+    img = f.depth_z;
+  else if (has(pass, Pass::DepthRay))
+    img = f.depth_ray;
+  else
+    throw InputError("", "--pass", "label/instance images: use 'generate' (integer PNGs)");
   if (ext == ".exr") {
-    std::vector<std::string> names = img.channels == 3 ? std::vector<std::string>{"R", "G", "B"}
-                                                       : std::vector<std::string>{"Z"};
+    std::vector<std::string> names =
+        img.channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Z"};
     writeExr(out, img, names);
   } else if (img.channels == 3 && !has(pass, Pass::Normal)) {
     writePng(out, encodeSrgb8(img));
@@ -84,11 +91,14 @@ void registerRender(CLI::App& app) {
                   "camera.json (width, height, fx, fy, cx, cy with pixel centres at +0.5, and "
                   "position/look_at/up or cam_to_world); default: the built-in room's first pose");
   cmd->add_option("--spp", a->spp, "samples per pixel (default 16)");
-  cmd->add_option("--max-bounces", a->max_bounces, "maximum scattering events per path (default 8)");
+  cmd->add_option("--max-bounces", a->max_bounces,
+                  "maximum scattering events per path (default 8)");
   cmd->add_option("--seed", a->seed, "random seed (default 0)");
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
-  cmd->add_option("--pass", a->pass, "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
-  cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")->required();
+  cmd->add_option("--pass", a->pass,
+                  "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
+  cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")
+      ->required();
   cmd->callback([a] { runRender(*a); });
 }
 

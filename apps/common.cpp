@@ -20,7 +20,8 @@ void SceneArgs::addTo(CLI::App& cmd) {
   cmd.add_option("--up", up, "up axis of an imported mesh scene (y or z; default z)")
       ->check(CLI::IsMember({"y", "z"}));
   cmd.add_option("--scale", scale, "metres per unit of an imported mesh scene (default 1)");
-  cmd.add_option("--labels", labels, "CSV 'name,nyu40' mapping object names of an imported scene to NYU40");
+  cmd.add_option("--labels", labels,
+                 "CSV 'name,nyu40' mapping object names of an imported scene to NYU40");
 }
 
 Scene SceneArgs::load() const {
@@ -46,12 +47,15 @@ struct ThreadLimit::Impl {
 ThreadLimit::ThreadLimit(int n) : impl_(std::make_unique<Impl>()) {
   if (n < 0) throw InputError("", "--threads", "must be >= 0 (0 = all cores)");
   if (n > 0)
-    impl_->control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, n);
+    impl_->control =
+        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, n);
   threads_ = n > 0 ? n : tbb::info::default_concurrency();
 }
 
 ThreadLimit::~ThreadLimit() = default;
 
-const char* version() { return INET_VERSION; }
+const char* version() {
+  return INET_VERSION;
+}
 
 }  // namespace inet::app

@@ -25,12 +25,12 @@ struct SceneArgs {
 
 /// Limits TBB to n threads for the life of the object (n = 0: all cores).
 class ThreadLimit {
-public:
+ public:
   explicit ThreadLimit(int n);
   ~ThreadLimit();
   int threads() const { return threads_; }
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int threads_;

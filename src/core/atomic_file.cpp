@@ -13,13 +13,16 @@ namespace fs = std::filesystem;
 
 namespace inet {
 
-bool isTemporaryName(const std::string& name) { return name.find(".tmp-") != std::string::npos; }
+bool isTemporaryName(const std::string& name) {
+  return name.find(".tmp-") != std::string::npos;
+}
 
 void writeFileAtomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   std::error_code ec;
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
-    if (ec) throw InputError(path.parent_path().string(), "", "cannot create folder: " + ec.message());
+    if (ec)
+      throw InputError(path.parent_path().string(), "", "cannot create folder: " + ec.message());
   }
   fs::path tmp = path;
   tmp += ".tmp-" + std::to_string(::getpid());
@@ -39,7 +42,8 @@ void writeFileAtomic(const fs::path& path, const std::function<void(const fs::pa
 void writeTextAtomic(const fs::path& path, const std::string& contents) {
   writeFileAtomic(path, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+    if (!out)
+      throw InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
     out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
     out.close();
     if (!out) throw InputError(path.string(), "", "write failed (disk full?)");
@@ -62,7 +66,8 @@ int removeStaleTemporaries(const fs::path& dir) {
 std::string readTextFile(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path.string(), "", "file not found");
-  if (fs::is_directory(path, ec)) throw InputError(path.string(), "", "is a folder, expected a file");
+  if (fs::is_directory(path, ec))
+    throw InputError(path.string(), "", "is a folder, expected a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "", std::string("cannot read: ") + std::strerror(errno));
   std::ostringstream ss;

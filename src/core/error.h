@@ -10,13 +10,13 @@ namespace inet {
 
 /// Bad user input. what() is "file: field: problem" (empty parts are left out).
 class InputError : public std::runtime_error {
-public:
+ public:
   InputError(const std::string& file, const std::string& field, const std::string& problem);
   const std::string& file() const { return file_; }
   const std::string& field() const { return field_; }
   const std::string& problem() const { return problem_; }
 
-private:
+ private:
   std::string file_, field_, problem_;
 };
 
@@ -24,11 +24,11 @@ private:
 
 }  // namespace inet
 
-#define INET_CHECK(cond)                                                     \
-  do {                                                                       \
-    if (!(cond)) ::inet::checkFailed(#cond, __FILE__, __LINE__, {});         \
+#define INET_CHECK(cond)                                             \
+  do {                                                               \
+    if (!(cond)) ::inet::checkFailed(#cond, __FILE__, __LINE__, {}); \
   } while (0)
-#define INET_CHECK_MSG(cond, msg)                                            \
-  do {                                                                       \
-    if (!(cond)) ::inet::checkFailed(#cond, __FILE__, __LINE__, (msg));      \
+#define INET_CHECK_MSG(cond, msg)                                       \
+  do {                                                                  \
+    if (!(cond)) ::inet::checkFailed(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

@@ -46,17 +46,15 @@ void ProgressBar::finish() {
 }
 
 void ProgressBar::draw(bool final) {
-  double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   double rate = elapsed > 0 ? done_ / elapsed : 0.0;
   double eta = rate > 0 ? (total_ - done_) / rate : NAN;
   const int width = 30;
   int filled = total_ > 0 ? static_cast<int>(width * done_ / total_) : width;
   std::string bar(filled, '#');
   bar.resize(width, '.');
-  std::string line = fmt::format("[{}] {}/{} {} {:.2f} {}/s elapsed {} ETA {}", bar, done_,
-                                 total_, unit_, rate, unit_, formatDuration(elapsed),
-                                 formatDuration(eta));
+  std::string line = fmt::format("[{}] {}/{} {} {:.2f} {}/s elapsed {} ETA {}", bar, done_, total_,
+                                 unit_, rate, unit_, formatDuration(elapsed), formatDuration(eta));
   if (tty_) {
     std::fprintf(stderr, "\r%s\x1b[K%s", line.c_str(), final ? "\n" : "");
   } else {

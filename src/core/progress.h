@@ -8,14 +8,14 @@
 namespace inet {
 
 class ProgressBar {
-public:
+ public:
   ProgressBar(int64_t total, std::string unit, bool enabled = true);
   /// Sets the number of finished items (monotonic) and redraws if due.
   void update(int64_t done);
   /// Draws the final state and ends the line.
   void finish();
 
-private:
+ private:
   void draw(bool final);
   int64_t total_;
   int64_t done_ = 0;

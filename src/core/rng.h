@@ -15,7 +15,7 @@ namespace inet {
 enum class RngStream : uint32_t { PathTracer = 1, Trajectory = 2, Layout = 3, Sensor = 4 };
 
 class CounterRng {
-public:
+ public:
   /// seed: global seed; stream: which consumer; a, b, c: its indices (frame, pixel, sample).
   CounterRng(uint64_t seed, RngStream stream, uint32_t a, uint32_t b, uint32_t c)
       : key_{{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32)}},
@@ -34,7 +34,7 @@ public:
     return static_cast<double>(((hi << 32) | lo) >> 11) * 0x1p-53;
   }
 
-private:
+ private:
   void refill() {
     out_ = philox_(ctr_, key_);
     ++ctr_.v[3];  // the low 24 bits of word 3 count blocks within one stream

@@ -60,7 +60,7 @@ std::string rateText(const Trajectory& traj) {
 }
 
 class AslWriter final : public FormatWriter {
-public:
+ public:
   explicit AslWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
     for (size_t k = 0; k < ctx().traj.size(); ++k)
       if (ctx().traj.poses[k].t_ns < 0)
@@ -98,7 +98,7 @@ public:
     writeTextAtomic(dir / "state_groundtruth_estimate0" / "sensor.yaml", groundTruthYaml());
   }
 
-private:
+ private:
   std::string cameraCsv(const std::string& suffix) const {
     std::string s = std::string(kEurocCameraCsvHeader) + "\n";
     for (size_t k = 0; k < ctx().traj.size(); ++k) {

@@ -63,7 +63,7 @@ struct FrameOutput {
 };
 
 class FormatWriter {
-public:
+ public:
   explicit FormatWriter(std::shared_ptr<const SequenceContext> ctx) : ctx_(std::move(ctx)) {}
   virtual ~FormatWriter() = default;
   FormatWriter(const FormatWriter&) = delete;
@@ -82,12 +82,12 @@ public:
   /// Paths (spec.dir / folder / stem+suffix) of the files frame k produces.
   std::vector<std::filesystem::path> frameFiles(size_t k) const;
 
-protected:
+ protected:
   const SequenceContext& ctx() const { return *ctx_; }
   /// Adds an output if its encoder's pass is in spec.passes.
   void addOutput(std::string folder, std::string suffix, FrameEncoder encoder);
 
-private:
+ private:
   std::shared_ptr<const SequenceContext> ctx_;
   std::vector<FrameOutput> outputs_;
 };

@@ -194,8 +194,12 @@ void writePng(const fs::path& path, const ImageU16& img) {
                      reinterpret_cast<const uint8_t*>(img.data.data())});
 }
 
-ImageU8 readPng8(const fs::path& path) { return readPngAny<uint8_t>(path); }
-ImageU16 readPng16(const fs::path& path) { return readPngAny<uint16_t>(path); }
+ImageU8 readPng8(const fs::path& path) {
+  return readPngAny<uint8_t>(path);
+}
+ImageU16 readPng16(const fs::path& path) {
+  return readPngAny<uint16_t>(path);
+}
 
 void writeExr(const fs::path& path, const ImageF& img,
               const std::vector<std::string>& channel_names) {

@@ -189,8 +189,12 @@ SequenceWriter::SequenceWriter(SequenceSpec spec, const Trajectory& traj,
 
 SequenceWriter::~SequenceWriter() = default;
 
-size_t SequenceWriter::frameCount() const { return ctx_->traj.size(); }
-const SequenceSpec& SequenceWriter::spec() const { return ctx_->spec; }
+size_t SequenceWriter::frameCount() const {
+  return ctx_->traj.size();
+}
+const SequenceSpec& SequenceWriter::spec() const {
+  return ctx_->spec;
+}
 
 std::vector<std::string> SequenceWriter::formats() const {
   std::vector<std::string> names;

@@ -25,7 +25,7 @@
 namespace inet {
 
 class SequenceWriter {
-public:
+ public:
   /// Validates everything before writing anything: format names (InputError field "--format"
   /// listing the valid ones), trajectory (non-empty, finite poses, timestamps >= 0 and strictly
   /// increasing), intrinsics, what each format needs (e.g. TUM: rgb + depth passes, 1 us apart),
@@ -59,7 +59,7 @@ public:
   /// The meta.json text this writer writes (deterministic).
   std::string metaJson() const;
 
-private:
+ private:
   std::shared_ptr<const SequenceContext> ctx_;
   std::vector<std::unique_ptr<FormatWriter>> formats_;
 };

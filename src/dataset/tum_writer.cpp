@@ -10,7 +10,7 @@ namespace inet {
 namespace {
 
 class TumWriter final : public FormatWriter {
-public:
+ public:
   explicit TumWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
     const PassMask passes = ctx().spec.passes;
     if (!has(passes, Pass::Rgb) || !has(passes, Pass::DepthZ))
@@ -55,7 +55,7 @@ public:
     writeTextAtomic(dir / "camera.txt", cameraText());
   }
 
-private:
+ private:
   std::string groundTruth(const std::string& file_line) const {
     std::string s =
         "# ground truth trajectory\n" + file_line + "# timestamp tx ty tz qx qy qz qw\n";
@@ -85,7 +85,9 @@ private:
 
 }  // namespace
 
-std::string tumStamp(TimeNs t_ns) { return nsToSecondsString(t_ns, 6); }
+std::string tumStamp(TimeNs t_ns) {
+  return nsToSecondsString(t_ns, 6);
+}
 
 std::unique_ptr<FormatWriter> makeTumWriter(std::shared_ptr<const SequenceContext> ctx) {
   return std::make_unique<TumWriter>(std::move(ctx));

@@ -11,8 +11,10 @@
 namespace inet {
 
 void CameraIntrinsics::validate(const std::string& where) const {
-  if (width < 1 || width > 32768) throw InputError(where, "width", fmt::format("{} is outside 1..32768", width));
-  if (height < 1 || height > 32768) throw InputError(where, "height", fmt::format("{} is outside 1..32768", height));
+  if (width < 1 || width > 32768)
+    throw InputError(where, "width", fmt::format("{} is outside 1..32768", width));
+  if (height < 1 || height > 32768)
+    throw InputError(where, "height", fmt::format("{} is outside 1..32768", height));
   if (!(fx > 0 && std::isfinite(fx))) throw InputError(where, "fx", "focal length must be > 0");
   if (!(fy > 0 && std::isfinite(fy))) throw InputError(where, "fy", "focal length must be > 0");
   if (!std::isfinite(cx)) throw InputError(where, "cx", "must be finite");
@@ -20,8 +22,8 @@ void CameraIntrinsics::validate(const std::string& where) const {
 }
 
 std::string CameraIntrinsics::toString() const {
-  return fmt::format("Pinhole[{}x{} fx={} fy={} cx={} cy={} (OpenCV cx={} cy={})]", width, height, fx,
-                     fy, cx, cy, cxOpenCV(), cyOpenCV());
+  return fmt::format("Pinhole[{}x{} fx={} fy={} cx={} cy={} (OpenCV cx={} cy={})]", width, height,
+                     fx, fy, cx, cy, cxOpenCV(), cyOpenCV());
 }
 
 namespace {
@@ -47,7 +49,9 @@ Vec3 vec3(const json& j, const std::string& key, const std::string& path) {
 }
 }  // namespace
 
-CameraFile loadCameraJson(const std::string& path) { return parseCameraJson(readTextFile(path), path); }
+CameraFile loadCameraJson(const std::string& path) {
+  return parseCameraJson(readTextFile(path), path);
+}
 
 CameraFile parseCameraJson(const std::string& text, const std::string& path) {
   json j;
@@ -60,7 +64,8 @@ CameraFile parseCameraJson(const std::string& text, const std::string& path) {
   CameraFile cam;
   CameraIntrinsics& k = cam.intrinsics;
   double w = number(j, "width", path), h = number(j, "height", path);
-  if (w != std::floor(w) || h != std::floor(h)) throw InputError(path, "width/height", "must be integers");
+  if (w != std::floor(w) || h != std::floor(h))
+    throw InputError(path, "width/height", "must be integers");
   if (!(w >= 1 && w <= 32768)) throw InputError(path, "width", "must be in 1..32768");
   if (!(h >= 1 && h <= 32768)) throw InputError(path, "height", "must be in 1..32768");
   k.width = static_cast<int>(w);
@@ -72,12 +77,15 @@ CameraFile parseCameraJson(const std::string& text, const std::string& path) {
   k.validate(path);
   if (j.contains("cam_to_world")) {
     const json& m = j["cam_to_world"];
-    if (!m.is_array() || m.size() != 4) throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
+    if (!m.is_array() || m.size() != 4)
+      throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
     Mat4 mat;
     for (int r = 0; r < 4; ++r) {
-      if (!m[r].is_array() || m[r].size() != 4) throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
+      if (!m[r].is_array() || m[r].size() != 4)
+        throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
       for (int c = 0; c < 4; ++c) {
-        if (!m[r][c].is_number()) throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
+        if (!m[r][c].is_number())
+          throw InputError(path, "cam_to_world", "must be 4 rows of 4 numbers");
         mat(r, c) = m[r][c].get<double>();
       }
     }

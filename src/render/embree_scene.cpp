@@ -19,10 +19,13 @@ void errorCallback(void*, RTCError code, const char* str) {
 void checkDevice(RTCDevice device, const char* what) {
   RTCError err = rtcGetDeviceError(device);
   if (err != RTC_ERROR_NONE)
-    throw std::runtime_error(fmt::format("Embree failed in {} (error {})", what, static_cast<int>(err)));
+    throw std::runtime_error(
+        fmt::format("Embree failed in {} (error {})", what, static_cast<int>(err)));
 }
 
-float luminance(const Vec3f& c) { return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z(); }
+float luminance(const Vec3f& c) {
+  return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
+}
 
 }  // namespace
 
@@ -69,7 +72,8 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   checkDevice(device_, "scene build");
   buildLights(scene);
   point_lights_ = scene.point_lights;
-  build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -81,17 +85,20 @@ EmbreeScene::~EmbreeScene() {
 
 void EmbreeScene::addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                        mesh.positions.size()));
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     Vec3f p = mesh.positions[i];
-    if (T_world_object) p = (*T_world_object * p.cast<double>().homogeneous()).head<3>().cast<float>();
+    if (T_world_object)
+      p = (*T_world_object * p.cast<double>().homogeneous()).head<3>().cast<float>();
     v[3 * i] = p.x();
     v[3 * i + 1] = p.y();
     v[3 * i + 2] = p.z();
   }
-  auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangles.size()));
+  auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(uint32_t),
+                                                             mesh.triangles.size()));
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
     for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
   rtcCommitGeometry(geom);
@@ -112,11 +119,13 @@ RTCScene EmbreeScene::meshScene(int mesh_index, const Scene& scene) {
     p[3] = mesh.sphere_radius;
   } else {
     geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), mesh.positions.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          mesh.positions.size()));
     std::copy_n(mesh.positions.front().data(), 3 * mesh.positions.size(), v);
-    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangles.size()));
+    auto* idx = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(uint32_t), mesh.triangles.size()));
     std::copy_n(mesh.triangles.front().data(), 3 * mesh.triangles.size(), idx);
   }
   rtcCommitGeometry(geom);
@@ -138,7 +147,9 @@ void EmbreeScene::buildLights(const Scene& scene) {
     for (const Tri& t : mesh.triangles) {
       Vec3f p[3];
       for (int k = 0; k < 3; ++k)
-        p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous()).head<3>().cast<float>();
+        p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous())
+                   .head<3>()
+                   .cast<float>();
       EmissiveTriangle e;
       e.p0 = p[0];
       e.e1 = p[1] - p[0];

@@ -34,7 +34,7 @@ struct EmissiveTriangle {
 };
 
 class EmbreeScene {
-public:
+ public:
   explicit EmbreeScene(const Scene& scene);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
@@ -64,7 +64,7 @@ public:
   const std::vector<PointLight>& pointLights() const { return point_lights_; }
   double buildMs() const { return build_ms_; }
 
-private:
+ private:
   void addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object);
   RTCScene meshScene(int mesh_index, const Scene& scene);
   void buildLights(const Scene& scene);

@@ -13,8 +13,8 @@ struct PassEntry {
   const char* name;
 };
 constexpr PassEntry kPasses[] = {
-    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},   {Pass::DepthRay, "ray_depth"},
-    {Pass::Normal, "normal"}, {Pass::Label, "label"},    {Pass::Instance, "instance"},
+    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"}, {Pass::DepthRay, "ray_depth"},
+    {Pass::Normal, "normal"}, {Pass::Label, "label"},  {Pass::Instance, "instance"},
     {Pass::Albedo, "albedo"},
 };
 }  // namespace
@@ -45,8 +45,9 @@ PassMask parsePassList(const std::string& list, const std::string& where) {
     if (!found) {
       std::vector<std::string> names;
       for (const auto& e : kPasses) names.emplace_back(e.name);
-      throw InputError(where, "--passes",
-                       fmt::format("unknown pass '{}' (valid: all, {})", item, fmt::join(names, ", ")));
+      throw InputError(
+          where, "--passes",
+          fmt::format("unknown pass '{}' (valid: all, {})", item, fmt::join(names, ", ")));
     }
   }
   if (mask == 0) throw InputError(where, "--passes", "no pass selected");

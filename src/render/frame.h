@@ -23,7 +23,9 @@ enum class Pass : uint32_t {
 using PassMask = uint32_t;
 constexpr PassMask kAllPasses = 0x7f;
 constexpr PassMask kGroundTruthPasses = kAllPasses & ~static_cast<PassMask>(Pass::Rgb);
-inline bool has(PassMask m, Pass p) { return (m & static_cast<PassMask>(p)) != 0; }
+inline bool has(PassMask m, Pass p) {
+  return (m & static_cast<PassMask>(p)) != 0;
+}
 
 /// Name of a pass as used on the command line ("rgb", "depth", "ray_depth", "normal", "label",
 /// "instance", "albedo").
@@ -33,13 +35,13 @@ PassMask parsePassList(const std::string& list, const std::string& where);
 
 struct Frame {
   PassMask passes = 0;
-  ImageF rgb;          ///< 3 channels
-  ImageF depth_z;      ///< 1 channel
-  ImageF depth_ray;    ///< 1 channel
-  ImageF normal;       ///< 3 channels
-  ImageU8 label;       ///< 1 channel, NYU40
-  ImageU16 instance;   ///< 1 channel
-  ImageF albedo;       ///< 3 channels
+  ImageF rgb;         ///< 3 channels
+  ImageF depth_z;     ///< 1 channel
+  ImageF depth_ray;   ///< 1 channel
+  ImageF normal;      ///< 3 channels
+  ImageU8 label;      ///< 1 channel, NYU40
+  ImageU16 instance;  ///< 1 channel
+  ImageF albedo;      ///< 3 channels
 };
 
 }  // namespace inet

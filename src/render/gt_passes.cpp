@@ -52,7 +52,8 @@ struct PassWriter {
   }
 
   /// t: ray parameter (= z-depth, the camera-frame direction has z = 1); d_len: |d_camera|.
-  void hit(size_t i, float t, float d_len, const Eigen::Vector3f& d_world, int object, const Vec3f& ng) const {
+  void hit(size_t i, float t, float d_len, const Eigen::Vector3f& d_world, int object,
+           const Vec3f& ng) const {
     const ObjectShading& s = scene.object(object);
     if (depth_z) depth_z[i] = t;
     if (depth_ray) depth_ray[i] = t * d_len;

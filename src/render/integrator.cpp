@@ -25,8 +25,9 @@ std::vector<std::string> integratorNames() {
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const std::string& where) {
   for (const auto& e : kIntegrators)
     if (name == e.name) return e.make();
-  throw InputError(where, "--integrator",
-                   fmt::format("unknown integrator '{}' (valid: {})", name, fmt::join(integratorNames(), ", ")));
+  throw InputError(
+      where, "--integrator",
+      fmt::format("unknown integrator '{}' (valid: {})", name, fmt::join(integratorNames(), ", ")));
 }
 
 }  // namespace inet

@@ -18,9 +18,9 @@ class EmbreeScene;
 
 /// Everything that controls how a frame is rendered. Part of a dataset's provenance.
 struct RenderOptions {
-  int spp = 16;              ///< samples per pixel for the RGB pass
-  int max_bounces = 8;       ///< scattering events per path (1 = direct light only)
-  uint64_t seed = 0;         ///< global seed of the counter-based RNG
+  int spp = 16;         ///< samples per pixel for the RGB pass
+  int max_bounces = 8;  ///< scattering events per path (1 = direct light only)
+  uint64_t seed = 0;    ///< global seed of the counter-based RNG
   PassMask passes = kAllPasses;
   std::string integrator = "path";
 };
@@ -35,7 +35,7 @@ struct RenderContext {
 };
 
 class Integrator {
-public:
+ public:
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
   /// Renders linear RGB radiance into `rgb` (3 channels, camera size, already allocated).

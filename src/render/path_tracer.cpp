@@ -42,12 +42,16 @@ Vec3f cosineHemisphere(const Vec3f& n, float u1, float u2) {
   return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z).normalized();
 }
 
-float powerHeuristic(float a, float b) { return a * a / (a * a + b * b); }
+float powerHeuristic(float a, float b) {
+  return a * a / (a * a + b * b);
+}
 
-float offsetScale(const Vec3f& p) { return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff()); }
+float offsetScale(const Vec3f& p) {
+  return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff());
+}
 
 class PathTracer final : public Integrator {
-public:
+ public:
   std::string name() const override { return "path"; }
 
   void render(const RenderContext& ctx, ImageF& rgb) const override {
@@ -55,27 +59,27 @@ public:
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
-    tbb::parallel_for(
-        tbb::blocked_range2d<int>(0, K.height, kTile, 0, K.width, kTile),
-        [&](const tbb::blocked_range2d<int>& r) {
-          for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
-            for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-              auto pixel = static_cast<uint32_t>(y * K.width + x);
-              Vec3f sum = Vec3f::Zero();
-              for (int s = 0; s < spp; ++s) {
-                CounterRng rng(ctx.options.seed, RngStream::PathTracer, ctx.frame_index, pixel,
-                               static_cast<uint32_t>(s));
-                float jx = rng.uniform(), jy = rng.uniform();
-                Vec3f d = R * K.rayCamera(x + jx, y + jy).cast<float>();
-                sum += radiance(ctx, Ray{origin, d.normalized()}, rng);
-              }
-              for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / static_cast<float>(spp);
-            }
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, K.height, kTile, 0, K.width, kTile),
+                      [&](const tbb::blocked_range2d<int>& r) {
+                        for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
+                          for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                            auto pixel = static_cast<uint32_t>(y * K.width + x);
+                            Vec3f sum = Vec3f::Zero();
+                            for (int s = 0; s < spp; ++s) {
+                              CounterRng rng(ctx.options.seed, RngStream::PathTracer,
+                                             ctx.frame_index, pixel, static_cast<uint32_t>(s));
+                              float jx = rng.uniform(), jy = rng.uniform();
+                              Vec3f d = R * K.rayCamera(x + jx, y + jy).cast<float>();
+                              sum += radiance(ctx, Ray{origin, d.normalized()}, rng);
+                            }
+                            for (int c = 0; c < 3; ++c)
+                              rgb.at(x, y, c) = sum[c] / static_cast<float>(spp);
+                          }
+                        }
+                      });
   }
 
-private:
+ private:
   static bool intersect(const EmbreeScene& scene, const Ray& ray, float tnear, RTCRayHit& rh) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -203,6 +207,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, CounterRng& rng) c
 
 }  // namespace
 
-std::unique_ptr<Integrator> makePathTracer() { return std::make_unique<PathTracer>(); }
+std::unique_ptr<Integrator> makePathTracer() {
+  return std::make_unique<PathTracer>();
+}
 
 }  // namespace inet

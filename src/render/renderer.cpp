@@ -32,7 +32,11 @@ void Renderer::renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_
   inet::renderGroundTruth(*scene_, K, T_world_camera, passes, frame);
 }
 
-double Renderer::sceneBuildMs() const { return scene_->buildMs(); }
-size_t Renderer::emissiveTriangleCount() const { return scene_->lights().size(); }
+double Renderer::sceneBuildMs() const {
+  return scene_->buildMs();
+}
+size_t Renderer::emissiveTriangleCount() const {
+  return scene_->lights().size();
+}
 
 }  // namespace inet

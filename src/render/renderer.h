@@ -13,7 +13,7 @@ namespace inet {
 class EmbreeScene;
 
 class Renderer {
-public:
+ public:
   /// Builds the acceleration structure; throws InputError for an unknown integrator name.
   Renderer(const Scene& scene, const std::string& integrator = "path");
   ~Renderer();
@@ -29,7 +29,7 @@ public:
   double sceneBuildMs() const;
   size_t emissiveTriangleCount() const;
 
-private:
+ private:
   std::unique_ptr<EmbreeScene> scene_;
   std::unique_ptr<Integrator> integrator_;
 };

@@ -37,8 +37,8 @@ std::string oneLine(std::string s) {
 
 Mat4 toEigen(const aiMatrix4x4& m) {
   Mat4 out;
-  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
-      m.d3, m.d4;
+  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
+      m.d4;
   return out;
 }
 
@@ -183,7 +183,6 @@ int resolveLabel(const LabelMap& labels, const std::string& name, int default_id
   return default_id;
 }
 
-
 /// T_world = C T_file C^-1 for C = scale * R_up, computed exactly: R_up is a signed permutation,
 /// so the rotation part is only permuted and the translation only scaled.
 Mat4 fileTransformToWorld(const Mat4& T_file, double scale, char up) {
@@ -198,8 +197,13 @@ Mat4 fileTransformToWorld(const Mat4& T_file, double scale, char up) {
 struct SceneBuilder {
   SceneBuilder(const aiScene* ai, const std::string& path, const ImportOptions& opt,
                const LabelMap& labels, int default_id)
-      : ai(ai), path(path), opt(opt), labels(labels), default_id(default_id),
-        C(fileToWorld(opt.scale, opt.up)), shared_mesh(ai->mNumMeshes, -2),
+      : ai(ai),
+        path(path),
+        opt(opt),
+        labels(labels),
+        default_id(default_id),
+        C(fileToWorld(opt.scale, opt.up)),
+        shared_mesh(ai->mNumMeshes, -2),
         material_of(ai->mNumMaterials, -1) {}
 
   void addNode(const aiNode* node, const Mat4& T_file) {
@@ -215,7 +219,8 @@ struct SceneBuilder {
       obj.name = node->mName.length ? node->mName.C_Str() : in->mName.C_Str();
       if (obj.name.empty()) obj.name = "object";
       if (canShare(T_world)) {
-        if (shared_mesh[mi] == -2) shared_mesh[mi] = addSharedMesh(ai, mi, C, scene, mesh_ids, report);
+        if (shared_mesh[mi] == -2)
+          shared_mesh[mi] = addSharedMesh(ai, mi, C, scene, mesh_ids, report);
         obj.mesh = shared_mesh[mi];
         obj.T_world_object = T_world;
       } else {
@@ -273,8 +278,8 @@ std::string ImportReport::summary(const std::string& default_category) const {
         unmatched_objects, unmatched_names.size(), default_category, names));
   }
   if (dropped_faces > 0)
-    parts.push_back(fmt::format("{} non-triangle face(s) (lines or points) were skipped",
-                                dropped_faces));
+    parts.push_back(
+        fmt::format("{} non-triangle face(s) (lines or points) were skipped", dropped_faces));
   if (clamped_materials > 0)
     parts.push_back(fmt::format(
         "{} material(s) had a diffuse colour outside [0, 1] and were clamped", clamped_materials));
@@ -287,9 +292,9 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   checkAxes(opt.scale, opt.up, path, "import options");
   auto default_id = nyu40FromName(opt.default_category);
   if (!default_id)
-    throw InputError(path, "default_category",
-                     fmt::format("unknown NYU40 class '{}' (valid: {})", opt.default_category,
-                                 nyu40NameList()));
+    throw InputError(
+        path, "default_category",
+        fmt::format("unknown NYU40 class '{}' (valid: {})", opt.default_category, nyu40NameList()));
   const LabelMap labels = opt.label_map.empty() ? LabelMap() : LabelMap::load(opt.label_map);
   auto importer = readFile(path, path, "");
   SceneBuilder builder(importer->GetScene(), path, opt, labels, *default_id);
@@ -331,9 +336,9 @@ Mesh loadMeshFile(const std::string& path, double scale, char up, const std::str
     std::string list;
     for (size_t i = 0; i < names.size() && i < 20; ++i) list += (i ? ", " : "") + names[i];
     if (names.size() > 20) list += fmt::format(", ... ({} more)", names.size() - 20);
-    throw InputError(where_file, where_field,
-                     fmt::format("{}no node or mesh named '{}' (available: {})", what, mesh_name,
-                                 list));
+    throw InputError(
+        where_file, where_field,
+        fmt::format("{}no node or mesh named '{}' (available: {})", what, mesh_name, list));
   }
   if (mesh.triangles.empty())
     throw InputError(where_file, where_field, what + "contains no triangles");

@@ -10,7 +10,7 @@ namespace inet {
 namespace {
 
 class Builder {
-public:
+ public:
   Builder() {
     scene_.name = "default_room";
     for (const char* p : {"box", "cylinder", "quad"}) {
@@ -62,7 +62,7 @@ public:
 
   Scene take() { return std::move(scene_); }
 
-private:
+ private:
   Scene scene_;
   std::string current_name_;
   int current_label_ = 0;
@@ -124,7 +124,8 @@ void tableWithLegs(Builder& b, const char* mat, Vec3 c, Vec3 top, double leg_r) 
   for (int sx : {-1, 1})
     for (int sy : {-1, 1})
       b.part("cylinder", mat,
-             {c.x() + sx * (top.x() / 2 - 2 * leg_r), c.y() + sy * (top.y() / 2 - 2 * leg_r), (h - top.z()) / 2},
+             {c.x() + sx * (top.x() / 2 - 2 * leg_r), c.y() + sy * (top.y() / 2 - 2 * leg_r),
+              (h - top.z()) / 2},
              {2 * leg_r, 2 * leg_r, h - top.z()});
 }
 
@@ -148,7 +149,8 @@ void furniture(Builder& b) {
   b.instance("bookshelf", "bookshelf");
   b.part("box", "wood_dark", {0.02, 2.0, 0.9}, {0.04, 1.0, 1.8});
   for (double y : {1.515, 2.485}) b.part("box", "wood_dark", {0.2, y, 0.9}, {0.4, 0.03, 1.8});
-  for (double z : {0.015, 0.45, 0.9, 1.35, 1.785}) b.part("box", "wood_dark", {0.2, 2.0, z}, {0.4, 0.94, 0.03});
+  for (double z : {0.015, 0.45, 0.9, 1.35, 1.785})
+    b.part("box", "wood_dark", {0.2, 2.0, z}, {0.4, 0.94, 0.03});
   b.instance("books", "books");
   const char* book_mats[] = {"book_a", "book_b", "book_c"};
   for (int shelf = 0; shelf < 3; ++shelf) {

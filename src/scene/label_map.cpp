@@ -17,7 +17,9 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-bool isSeparator(char c) { return c == '_' || c == '-' || c == '.' || c == ' '; }
+bool isSeparator(char c) {
+  return c == '_' || c == '-' || c == '.' || c == ' ';
+}
 
 /// Lower-cased with separators removed: "Night_Stand.2" -> "nightstand2".
 std::string compact(std::string_view s) {
@@ -111,7 +113,9 @@ std::string nyu40NameList() {
   return names;
 }
 
-LabelMap LabelMap::load(const std::string& path) { return parse(readTextFile(path), path); }
+LabelMap LabelMap::load(const std::string& path) {
+  return parse(readTextFile(path), path);
+}
 
 LabelMap LabelMap::parse(const std::string& text, const std::string& where) {
   LabelMap map;

@@ -26,7 +26,7 @@ namespace inet {
 std::string nyu40NameList();
 
 class LabelMap {
-public:
+ public:
   /// One CSV row: lower-cased key and its NYU40 id (0..40).
   struct Entry {
     std::string key;
@@ -53,7 +53,7 @@ public:
   const std::vector<Entry>& entries() const { return entries_; }
   size_t size() const { return entries_.size(); }
 
-private:
+ private:
   std::vector<Entry> entries_;
 };
 

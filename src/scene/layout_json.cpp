@@ -35,7 +35,9 @@ std::string dot(const std::string& base, const std::string& key) {
   return base.empty() ? key : base + "." + key;
 }
 
-std::string at(const std::string& base, size_t i) { return fmt::format("{}[{}]", base, i); }
+std::string at(const std::string& base, size_t i) {
+  return fmt::format("{}[{}]", base, i);
+}
 
 /// "string \"abc\"": a JSON value's type and (shortened) text, for messages.
 std::string describe(const json& j) {
@@ -46,7 +48,7 @@ std::string describe(const json& j) {
 
 /// Typed access to parsed JSON; every failure names the file and the field path.
 class Reader {
-public:
+ public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
   const std::string& file() const { return file_; }
 
@@ -100,10 +102,9 @@ public:
   int integer(const json& j, const std::string& field, int lo, int hi) const {
     if (!j.is_number_integer()) fail(field, "expected an integer, got " + describe(j));
     // non-negative integers parse as unsigned and may exceed int64_t
-    bool in_range = j.is_number_unsigned()
-                        ? (j.get<uint64_t>() <= static_cast<uint64_t>(hi) &&
-                           static_cast<int64_t>(j.get<uint64_t>()) >= lo)
-                        : (j.get<int64_t>() >= lo && j.get<int64_t>() <= hi);
+    bool in_range = j.is_number_unsigned() ? (j.get<uint64_t>() <= static_cast<uint64_t>(hi) &&
+                                              static_cast<int64_t>(j.get<uint64_t>()) >= lo)
+                                           : (j.get<int64_t>() >= lo && j.get<int64_t>() <= hi);
     if (!in_range) fail(field, fmt::format("{} is outside {}..{}", j.dump(), lo, hi));
     return static_cast<int>(j.get<int64_t>());
   }
@@ -125,7 +126,7 @@ public:
                  single(j[2], at(field, 2)));
   }
 
-private:
+ private:
   std::string file_;
 };
 
@@ -274,8 +275,8 @@ int parseLabel(const Reader& r, const json& j, const std::string& field) {
     const std::string name = r.string(j["category"], dot(field, "category"));
     by_name = nyu40FromName(name);
     if (!by_name)
-      r.fail(dot(field, "category"), fmt::format("unknown NYU40 class '{}' (valid: {})", name,
-                                                 nyu40NameList()));
+      r.fail(dot(field, "category"),
+             fmt::format("unknown NYU40 class '{}' (valid: {})", name, nyu40NameList()));
   }
   if (by_id && by_name && *by_id != *by_name)
     r.fail(dot(field, "category"),
@@ -302,12 +303,11 @@ int resolveId(const Reader& r, const std::map<std::string, int>& ids, const std:
 Object parseObject(const Reader& r, const json& j, const std::string& field,
                    const std::map<std::string, int>& mesh_ids,
                    const std::map<std::string, int>& material_ids) {
-  r.object(j, field, {"name", "mesh", "material", "instance", "transform"},
-           {"nyu40", "category"});
+  r.object(j, field, {"name", "mesh", "material", "instance", "transform"}, {"nyu40", "category"});
   Object o;
   o.name = r.string(j["name"], dot(field, "name"));
-  o.mesh = resolveId(r, mesh_ids, r.string(j["mesh"], dot(field, "mesh")), dot(field, "mesh"),
-                     "mesh");
+  o.mesh =
+      resolveId(r, mesh_ids, r.string(j["mesh"], dot(field, "mesh")), dot(field, "mesh"), "mesh");
   o.material = resolveId(r, material_ids, r.string(j["material"], dot(field, "material")),
                          dot(field, "material"), "material");
   o.nyu40 = parseLabel(r, j, field);
@@ -334,12 +334,14 @@ PointLight parsePointLight(const Reader& r, const json& j, const std::string& fi
 /// Checks "format" and "version" first, so that a file of another kind or a newer version gets
 /// that message rather than a complaint about some key it happens to contain.
 void checkHeader(const Reader& r, const json& root) {
-  if (!root.is_object()) r.fail("", "expected a JSON object at the top level, got " + describe(root));
+  if (!root.is_object())
+    r.fail("", "expected a JSON object at the top level, got " + describe(root));
   if (!root.contains("format"))
-    r.fail("format", fmt::format("missing; a layout file declares \"format\": \"{}\"",
-                                 kLayoutFormat));
+    r.fail("format",
+           fmt::format("missing; a layout file declares \"format\": \"{}\"", kLayoutFormat));
   if (!root["format"].is_string() || root["format"].get<std::string>() != kLayoutFormat)
-    r.fail("format", fmt::format("expected \"{}\", got {}", kLayoutFormat, describe(root["format"])));
+    r.fail("format",
+           fmt::format("expected \"{}\", got {}", kLayoutFormat, describe(root["format"])));
   if (!root.contains("version")) r.fail("version", "missing required key");
   const json& v = root["version"];
   const auto& supported = supportedLayoutVersions();
@@ -419,7 +421,8 @@ ojson meshToJson(const Mesh& m, const std::string& where, const std::string& fie
       break;
     case MeshSource::Kind::Inline: {
       if (m.isSphere())
-        throw InputError(where, field, "an analytic sphere must have a \"sphere\" primitive source");
+        throw InputError(where, field,
+                         "an analytic sphere must have a \"sphere\" primitive source");
       ojson verts = ojson::array(), tris = ojson::array();
       for (const auto& p : m.positions) verts.push_back(jsonArray(p));
       for (const auto& t : m.triangles) tris.push_back({t[0], t[1], t[2]});
@@ -454,9 +457,9 @@ void checkIds(const std::vector<T>& items, const std::string& where, const char*
     if (items[i].id.empty()) throw InputError(where, at(list, i) + ".id", "empty id");
     auto [it, inserted] = seen.emplace(items[i].id, i);
     if (!inserted)
-      throw InputError(where, at(list, i) + ".id",
-                       fmt::format("duplicate id '{}' (already used by {})", items[i].id,
-                                   at(list, it->second)));
+      throw InputError(
+          where, at(list, i) + ".id",
+          fmt::format("duplicate id '{}' (already used by {})", items[i].id, at(list, it->second)));
   }
 }
 
@@ -469,8 +472,8 @@ void checkWritable(const Scene& scene, const std::string& where) {
   if (scene.name.empty()) throw InputError(where, "name", "empty scene name");
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshSource& src = scene.meshes[i].source;
-    if (src.kind == MeshSource::Kind::File && (src.file.empty() || !(src.scale > 0) ||
-                                               (src.up != 'y' && src.up != 'z')))
+    if (src.kind == MeshSource::Kind::File &&
+        (src.file.empty() || !(src.scale > 0) || (src.up != 'y' && src.up != 'z')))
       throw InputError(where, at("meshes", i), "file source needs a path, scale > 0, up y or z");
   }
   for (size_t i = 0; i < scene.objects.size(); ++i)
@@ -484,7 +487,9 @@ void checkWritable(const Scene& scene, const std::string& where) {
   }
 }
 
-bool isScalar(const ojson& j) { return !j.is_object() && !j.is_array(); }
+bool isScalar(const ojson& j) {
+  return !j.is_object() && !j.is_array();
+}
 
 std::string dumpScalar(const ojson& j) {
   return j.dump(-1, ' ', false, ojson::error_handler_t::replace);
@@ -529,8 +534,9 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   auto mesh_ids = parseList(r, root, "meshes", scene.meshes, [&](const json& j, const auto& f) {
     return parseMesh(r, j, f, base_dir);
   });
-  auto material_ids = parseList(r, root, "materials", scene.materials,
-                                [&](const json& j, const auto& f) { return parseMaterial(r, j, f); });
+  auto material_ids =
+      parseList(r, root, "materials", scene.materials,
+                [&](const json& j, const auto& f) { return parseMaterial(r, j, f); });
   const json& objects = r.array(root["objects"], "objects");
   for (size_t i = 0; i < objects.size(); ++i)
     scene.objects.push_back(parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids));
@@ -543,7 +549,9 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   return scene;
 }
 
-Scene loadLayout(const std::string& path) { return parseLayout(readTextFile(path), path); }
+Scene loadLayout(const std::string& path) {
+  return parseLayout(readTextFile(path), path);
+}
 
 std::string layoutToJson(const Scene& scene) {
   const std::string where = fmt::format("scene '{}'", scene.name);

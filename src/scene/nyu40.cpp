@@ -8,14 +8,14 @@ namespace inet {
 namespace {
 // Order and spelling follow the NYU40 list in ../shared/data/labels (BlenderProc's nyu_idset.csv).
 constexpr std::array<std::string_view, kNyu40Count> kNames = {
-    "void",       "wall",          "floor",        "cabinet",     "bed",
-    "chair",      "sofa",          "table",        "door",        "window",
-    "bookshelf",  "picture",       "counter",      "blinds",      "desk",
-    "shelves",    "curtain",       "dresser",      "pillow",      "mirror",
-    "floor_mat",  "clothes",       "ceiling",      "books",       "refridgerator",
-    "television", "paper",         "towel",        "shower_curtain", "box",
-    "whiteboard", "person",        "night_stand",  "toilet",      "sink",
-    "lamp",       "bathtub",       "bag",          "otherstructure", "otherfurniture",
+    "void",       "wall",    "floor",       "cabinet",        "bed",
+    "chair",      "sofa",    "table",       "door",           "window",
+    "bookshelf",  "picture", "counter",     "blinds",         "desk",
+    "shelves",    "curtain", "dresser",     "pillow",         "mirror",
+    "floor_mat",  "clothes", "ceiling",     "books",          "refridgerator",
+    "television", "paper",   "towel",       "shower_curtain", "box",
+    "whiteboard", "person",  "night_stand", "toilet",         "sink",
+    "lamp",       "bathtub", "bag",         "otherstructure", "otherfurniture",
     "otherprop"};
 
 std::string normalise(std::string_view s) {
@@ -56,12 +56,36 @@ void nyu40Color(int id, unsigned char rgb[3]) {
   double f = h - sector, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
   double r = 0, g = 0, b = 0;
   switch (sector % 6) {
-    case 0: r = v; g = t; b = p; break;
-    case 1: r = q; g = v; b = p; break;
-    case 2: r = p; g = v; b = t; break;
-    case 3: r = p; g = q; b = v; break;
-    case 4: r = t; g = p; b = v; break;
-    default: r = v; g = p; b = q; break;
+    case 0:
+      r = v;
+      g = t;
+      b = p;
+      break;
+    case 1:
+      r = q;
+      g = v;
+      b = p;
+      break;
+    case 2:
+      r = p;
+      g = v;
+      b = t;
+      break;
+    case 3:
+      r = p;
+      g = q;
+      b = v;
+      break;
+    case 4:
+      r = t;
+      g = p;
+      b = v;
+      break;
+    default:
+      r = v;
+      g = p;
+      b = q;
+      break;
   }
   rgb[0] = static_cast<unsigned char>(r * 255 + 0.5);
   rgb[1] = static_cast<unsigned char>(g * 255 + 0.5);

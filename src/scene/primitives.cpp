@@ -66,9 +66,10 @@ void rejectUnknown(const std::map<std::string, double>& params,
     bool ok = false;
     for (const auto& a : allowed) ok |= (a == key);
     if (!ok) {
-      throw InputError(where, field + "." + key,
-                       fmt::format("unknown parameter for primitive '{}' (valid: {})", name,
-                                   allowed.empty() ? "none" : fmt::format("{}", fmt::join(allowed, ", "))));
+      throw InputError(
+          where, field + "." + key,
+          fmt::format("unknown parameter for primitive '{}' (valid: {})", name,
+                      allowed.empty() ? "none" : fmt::format("{}", fmt::join(allowed, ", "))));
     }
   }
 }
@@ -102,9 +103,9 @@ Mesh makePrimitive(const std::string& name, const std::map<std::string, double>&
     if (!(r > 0 && std::isfinite(r))) throw InputError(where, field + ".radius", "must be > 0");
     m.sphere_radius = static_cast<float>(r);
   } else {
-    throw InputError(where, field,
-                     fmt::format("unknown primitive '{}' (valid: {})", name,
-                                 fmt::join(primitiveNames(), ", ")));
+    throw InputError(
+        where, field,
+        fmt::format("unknown primitive '{}' (valid: {})", name, fmt::join(primitiveNames(), ", ")));
   }
   m.source.kind = MeshSource::Kind::Primitive;
   m.source.primitive = name;

@@ -33,8 +33,7 @@ std::pair<Vec3, Vec3> Scene::bounds() const {
     };
     if (m.isSphere()) {
       double r = m.sphere_radius;
-      for (int c = 0; c < 8; ++c)
-        grow(Vec3((c & 1) ? r : -r, (c & 2) ? r : -r, (c & 4) ? r : -r));
+      for (int c = 0; c < 8; ++c) grow(Vec3((c & 1) ? r : -r, (c & 2) ? r : -r, (c & 4) ? r : -r));
     } else {
       for (const auto& p : m.positions) grow(p.cast<double>());
     }
@@ -69,17 +68,20 @@ void Scene::validate(const std::string& where) const {
     if (o.material < 0 || o.material >= static_cast<int>(materials.size()))
       throw InputError(where, field + ".material", "no such material");
     if (o.nyu40 < 0 || o.nyu40 > 40)
-      throw InputError(where, field + ".nyu40", fmt::format("{} is not an NYU40 id (0..40)", o.nyu40));
+      throw InputError(where, field + ".nyu40",
+                       fmt::format("{} is not an NYU40 id (0..40)", o.nyu40));
     if (o.instance < 1 || o.instance > 65535)
-      throw InputError(where, field + ".instance", fmt::format("{} is outside 1..65535", o.instance));
+      throw InputError(where, field + ".instance",
+                       fmt::format("{} is outside 1..65535", o.instance));
     if (!o.T_world_object.allFinite())
       throw InputError(where, field + ".transform", "non-finite value");
     if (o.T_world_object.row(3) != Eigen::RowVector4d(0, 0, 0, 1))
       throw InputError(where, field + ".transform", "last row must be 0 0 0 1");
     double det = o.T_world_object.block<3, 3>(0, 0).determinant();
     if (!(det > 1e-12))
-      throw InputError(where, field + ".transform",
-                       "linear part must have a positive determinant (no zero, negative or mirror scale)");
+      throw InputError(
+          where, field + ".transform",
+          "linear part must have a positive determinant (no zero, negative or mirror scale)");
   }
   for (const auto& m : materials) {
     if (!m.albedo.allFinite() || m.albedo.minCoeff() < 0 || m.albedo.maxCoeff() > 1)

@@ -24,12 +24,12 @@ using Tri = Eigen::Matrix<uint32_t, 3, 1>;
 struct MeshSource {
   enum class Kind { Primitive, File, Inline };
   Kind kind = Kind::Inline;
-  std::string primitive;                  ///< Primitive: "box", "cylinder", "quad", "sphere"
-  std::map<std::string, double> params;   ///< Primitive parameters (see primitives.h)
-  std::string file;                       ///< File: path as written in the layout (relative to it)
-  double scale = 1.0;                     ///< File: metres per file unit
-  char up = 'z';                          ///< File: up axis of the file, 'y' or 'z'
-  std::string mesh_name;                  ///< File: pick one mesh by name ("" = all merged)
+  std::string primitive;                 ///< Primitive: "box", "cylinder", "quad", "sphere"
+  std::map<std::string, double> params;  ///< Primitive parameters (see primitives.h)
+  std::string file;                      ///< File: path as written in the layout (relative to it)
+  double scale = 1.0;                    ///< File: metres per file unit
+  char up = 'z';                         ///< File: up axis of the file, 'y' or 'z'
+  std::string mesh_name;                 ///< File: pick one mesh by name ("" = all merged)
 };
 
 /// Geometry in object space: triangles, or one analytic sphere (centre 0, `sphere_radius`).
@@ -48,19 +48,19 @@ enum class MaterialType { Lambertian };
 struct Material {
   std::string id;
   MaterialType type = MaterialType::Lambertian;
-  Vec3f albedo{0.8f, 0.8f, 0.8f};   ///< linear RGB reflectance
-  Vec3f emission{0.f, 0.f, 0.f};    ///< emitted radiance (W sr^-1 m^-2, linear RGB), one-sided
-                                    ///< along the geometric normal
+  Vec3f albedo{0.8f, 0.8f, 0.8f};  ///< linear RGB reflectance
+  Vec3f emission{0.f, 0.f, 0.f};   ///< emitted radiance (W sr^-1 m^-2, linear RGB), one-sided
+                                   ///< along the geometric normal
   bool isEmissive() const { return emission.maxCoeff() > 0.0f; }
 };
 
 struct Object {
   std::string name;
-  int mesh = -1;                   ///< index into Scene::meshes
-  int material = -1;               ///< index into Scene::materials
+  int mesh = -1;      ///< index into Scene::meshes
+  int material = -1;  ///< index into Scene::materials
   Mat4 T_world_object = Mat4::Identity();
-  int nyu40 = 0;                   ///< NYU40 class id, 0 = void / unlabelled, 1..40
-  int instance = 0;                ///< instance id (1..65535), shared by the parts of one object
+  int nyu40 = 0;     ///< NYU40 class id, 0 = void / unlabelled, 1..40
+  int instance = 0;  ///< instance id (1..65535), shared by the parts of one object
 };
 
 /// A point light (isotropic): radiant intensity in W/sr per RGB channel.

@@ -49,7 +49,9 @@ bool parseSecondsToNs(const std::string& s, TimeNs& out) {
   return true;
 }
 
-Trajectory readTumTrajectory(const std::string& path) { return parseTumTrajectory(readTextFile(path), path); }
+Trajectory readTumTrajectory(const std::string& path) {
+  return parseTumTrajectory(readTextFile(path), path);
+}
 
 Trajectory parseTumTrajectory(const std::string& text, const std::string& path) {
   Trajectory traj;
@@ -68,7 +70,9 @@ Trajectory parseTumTrajectory(const std::string& text, const std::string& path) 
     while (fields >> t) tok.push_back(t);
     std::string where = fmt::format("line {}", line_no);
     if (tok.size() != 8)
-      throw InputError(path, where, fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
+      throw InputError(
+          path, where,
+          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
     TimedPose p;
     if (!parseSecondsToNs(tok[0], p.t_ns))
       throw InputError(path, where, "timestamp '" + tok[0] + "' is not a number of seconds");
@@ -77,7 +81,9 @@ Trajectory parseTumTrajectory(const std::string& text, const std::string& path) 
       char* end = nullptr;
       v[k] = std::strtod(tok[k + 1].c_str(), &end);
       if (end == tok[k + 1].c_str() || *end != '\0' || !std::isfinite(v[k]))
-        throw InputError(path, where, "field " + std::to_string(k + 2) + " '" + tok[k + 1] + "' is not a finite number");
+        throw InputError(
+            path, where,
+            "field " + std::to_string(k + 2) + " '" + tok[k + 1] + "' is not a finite number");
     }
     p.T_world_camera.t = Vec3(v[0], v[1], v[2]);
     Quat q(v[6], v[3], v[4], v[5]);
@@ -85,8 +91,9 @@ Trajectory parseTumTrajectory(const std::string& text, const std::string& path) 
       throw InputError(path, where, fmt::format("quaternion norm {:.6f} is not 1", q.norm()));
     p.T_world_camera.q = q.normalized();
     if (!traj.poses.empty() && p.t_ns <= traj.poses.back().t_ns)
-      throw InputError(path, where, "timestamps must increase strictly (" + tok[0] + " after " +
-                                        nsToSecondsString(traj.poses.back().t_ns) + ")");
+      throw InputError(path, where,
+                       "timestamps must increase strictly (" + tok[0] + " after " +
+                           nsToSecondsString(traj.poses.back().t_ns) + ")");
     traj.poses.push_back(p);
   }
   if (traj.empty()) throw InputError(path, "", "trajectory has no poses");
@@ -98,8 +105,8 @@ std::string formatTumTrajectory(const Trajectory& traj, const std::string& comme
   for (const auto& p : traj.poses) {
     Quat q = canonicalQuat(p.T_world_camera.q);
     const Vec3& t = p.T_world_camera.t;
-    out += fmt::format("{} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f}\n", nsToSecondsString(p.t_ns),
-                       t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    out += fmt::format("{} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f} {:.9f}\n",
+                       nsToSecondsString(p.t_ns), t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
   }
   return out;
 }

@@ -15,25 +15,29 @@ namespace fs = std::filesystem;
 namespace inet::test {
 namespace {
 
-std::string layoutWith(const std::string& object_json, const std::string& mesh_json = "",
-                       const std::string& head = R"("format": "interiornet-layout", "version": 1)") {
+std::string layoutWith(
+    const std::string& object_json, const std::string& mesh_json = "",
+    const std::string& head = R"("format": "interiornet-layout", "version": 1)") {
   return "{" + head + R"(, "name": "room",
-  "meshes": [{"id": "box", "primitive": "box"})" + mesh_json + R"(],
+  "meshes": [{"id": "box", "primitive": "box"})" +
+         mesh_json + R"(],
   "materials": [{"id": "white", "type": "lambertian", "albedo": [0.8, 0.8, 0.8]}],
-  "objects": [)" + object_json + "]}\n";
+  "objects": [)" +
+         object_json + "]}\n";
 }
 
 const std::string kGoodObject =
     R"({"name": "cube", "mesh": "box", "material": "white", "nyu40": 29, "instance": 1,
         "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})";
 
-const std::string kGoodTrajectory = "# t tx ty tz qx qy qz qw\n1.0 0 -3 0 0 0 0 1\n1.04 0 -3 0 0 0 0 1\n";
+const std::string kGoodTrajectory =
+    "# t tx ty tz qx qy qz qw\n1.0 0 -3 0 0 0 0 1\n1.04 0 -3 0 0 0 0 1\n";
 
 struct Case {
   std::string name;
   std::map<std::string, std::string> files;  // written into the case folder
-  std::string args;                           // {D} is replaced by the case folder
-  std::vector<std::string> expect;            // substrings of stderr
+  std::string args;                          // {D} is replaced by the case folder
+  std::vector<std::string> expect;           // substrings of stderr
 };
 
 std::vector<Case> cases() {
@@ -45,50 +49,100 @@ std::vector<Case> cases() {
     return s;
   };
   return {
-      {"malformed_json", {{"l.json", "{\"format\": \"interiornet-layout\", \"version\": 1,,}"}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "JSON"}},
-      {"missing_field", {{"l.json", layoutWith(replaced(R"("mesh": "box", )", ""))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "mesh"}},
-      {"wrong_type", {{"l.json", layoutWith(replaced(R"("instance": 1)", R"("instance": "one")"))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "instance"}},
-      {"negative_scale", {{"l.json", layoutWith(replaced("[1,0,0,0,", "[-1,0,0,0,"))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "transform"}},
-      {"unknown_label", {{"l.json", layoutWith(replaced(R"("nyu40": 29)", R"("category": "spaceship")"))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "spaceship"}},
-      {"label_out_of_range", {{"l.json", layoutWith(replaced(R"("nyu40": 29)", R"("nyu40": 41)"))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "nyu40"}},
-      {"unknown_key", {{"l.json", layoutWith(replaced(R"("instance": 1)", R"("instance": 1, "colour": 3)"))}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "colour"}},
-      {"wrong_version", {{"l.json", layoutWith(kGoodObject, "", R"("format": "interiornet-layout", "version": 99)")}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"l.json", "version"}},
-      {"missing_mesh_file", {{"l.json", layoutWith(kGoodObject, R"(, {"id": "chair", "file": "no_such_chair.obj"})")}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json" + traj_args, {"no_such_chair.obj"}},
-      {"malformed_obj", {{"scene.obj", "o broken\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/scene.obj" + traj_args, {"scene.obj"}},
-      {"missing_layout", {{"traj.txt", kGoodTrajectory}}, "--layout {D}/nothing.json" + traj_args, {"nothing.json", "not found"}},
-      {"empty_trajectory", {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "# only a comment\n"}},
-       "--layout {D}/l.json" + traj_args, {"traj.txt", "no poses"}},
-      {"non_monotonic_time", {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "2.0 0 -3 0 0 0 0 1\n1.0 0 -3 0 0 0 0 1\n"}},
-       "--layout {D}/l.json" + traj_args, {"traj.txt", "line 2", "increase"}},
-      {"short_trajectory_line", {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "1.0 0 -3 0 0 0 1\n"}},
-       "--layout {D}/l.json" + traj_args, {"traj.txt", "line 1", "8 fields"}},
-      {"bad_quaternion", {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "1.0 0 -3 0 0 0 0 2\n"}},
-       "--layout {D}/l.json" + traj_args, {"traj.txt", "quaternion"}},
-      {"layout_without_trajectory", {{"l.json", layoutWith(kGoodObject)}}, "--layout {D}/l.json", {"--trajectory"}},
-      {"too_many_frames", {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", kGoodTrajectory}},
-       "--layout {D}/l.json --frames 5" + traj_args, {"traj.txt", "--frames"}},
+      {"malformed_json",
+       {{"l.json", "{\"format\": \"interiornet-layout\", \"version\": 1,,}"},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "JSON"}},
+      {"missing_field",
+       {{"l.json", layoutWith(replaced(R"("mesh": "box", )", ""))}, {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "mesh"}},
+      {"wrong_type",
+       {{"l.json", layoutWith(replaced(R"("instance": 1)", R"("instance": "one")"))},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "instance"}},
+      {"negative_scale",
+       {{"l.json", layoutWith(replaced("[1,0,0,0,", "[-1,0,0,0,"))}, {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "transform"}},
+      {"unknown_label",
+       {{"l.json", layoutWith(replaced(R"("nyu40": 29)", R"("category": "spaceship")"))},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "spaceship"}},
+      {"label_out_of_range",
+       {{"l.json", layoutWith(replaced(R"("nyu40": 29)", R"("nyu40": 41)"))},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "nyu40"}},
+      {"unknown_key",
+       {{"l.json", layoutWith(replaced(R"("instance": 1)", R"("instance": 1, "colour": 3)"))},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "colour"}},
+      {"wrong_version",
+       {{"l.json", layoutWith(kGoodObject, "", R"("format": "interiornet-layout", "version": 99)")},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"l.json", "version"}},
+      {"missing_mesh_file",
+       {{"l.json", layoutWith(kGoodObject, R"(, {"id": "chair", "file": "no_such_chair.obj"})")},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json" + traj_args,
+       {"no_such_chair.obj"}},
+      {"malformed_obj",
+       {{"scene.obj", "o broken\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"},
+        {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/scene.obj" + traj_args,
+       {"scene.obj"}},
+      {"missing_layout",
+       {{"traj.txt", kGoodTrajectory}},
+       "--layout {D}/nothing.json" + traj_args,
+       {"nothing.json", "not found"}},
+      {"empty_trajectory",
+       {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "# only a comment\n"}},
+       "--layout {D}/l.json" + traj_args,
+       {"traj.txt", "no poses"}},
+      {"non_monotonic_time",
+       {{"l.json", layoutWith(kGoodObject)},
+        {"traj.txt", "2.0 0 -3 0 0 0 0 1\n1.0 0 -3 0 0 0 0 1\n"}},
+       "--layout {D}/l.json" + traj_args,
+       {"traj.txt", "line 2", "increase"}},
+      {"short_trajectory_line",
+       {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "1.0 0 -3 0 0 0 1\n"}},
+       "--layout {D}/l.json" + traj_args,
+       {"traj.txt", "line 1", "8 fields"}},
+      {"bad_quaternion",
+       {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "1.0 0 -3 0 0 0 0 2\n"}},
+       "--layout {D}/l.json" + traj_args,
+       {"traj.txt", "quaternion"}},
+      {"layout_without_trajectory",
+       {{"l.json", layoutWith(kGoodObject)}},
+       "--layout {D}/l.json",
+       {"--trajectory"}},
+      {"too_many_frames",
+       {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", kGoodTrajectory}},
+       "--layout {D}/l.json --frames 5" + traj_args,
+       {"traj.txt", "--frames"}},
       {"unknown_pass", {}, "--passes depth,colour", {"--passes", "colour"}},
       {"unknown_format", {}, "--format asl,rosbag", {"--format", "rosbag"}},
       {"zero_frames", {}, "--frames 0", {"--frames"}},
       {"zero_spp", {}, "--spp 0", {"--spp"}},
       {"negative_threads", {}, "--threads -1", {"--threads"}},
       {"bad_width", {}, "--width 0", {"width"}},
-      {"unwritable_output", {{"out", "I am a file, not a folder\n"}}, "--frames 1 --out {D}/out", {"out"}},
+      {"unwritable_output",
+       {{"out", "I am a file, not a folder\n"}},
+       "--frames 1 --out {D}/out",
+       {"out"}},
   };
 }
 
 // Readable names in test listings instead of a byte dump.
-void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadInput : public ::testing::TestWithParam<Case> {};
 
@@ -98,27 +152,33 @@ TEST_P(BadInput, FailsWithOneLineMessageAndWritesNothing) {
   for (const auto& [name, text] : c.files) writeFile(dir / name, text);
   auto before = readTree(dir.path());
   std::string args = c.args;
-  for (size_t p; (p = args.find("{D}")) != std::string::npos;) args.replace(p, 3, dir.path().string());
+  for (size_t p; (p = args.find("{D}")) != std::string::npos;)
+    args.replace(p, 3, dir.path().string());
   if (args.find("--out") == std::string::npos) args += " --out " + (dir / "out").string();
   RunResult r = runInterinet("generate --width 32 --height 24 --spp 1 --no-progress " + args);
   EXPECT_NE(r.exit_code, 0) << c.name;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line: " << r.err;
   EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
-  for (const auto& s : c.expect) EXPECT_NE(r.err.find(s), std::string::npos) << "'" << s << "' not in: " << r.err;
+  for (const auto& s : c.expect)
+    EXPECT_NE(r.err.find(s), std::string::npos) << "'" << s << "' not in: " << r.err;
   EXPECT_EQ(readTree(dir.path()), before) << "the failed run changed files";
 }
 
 INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
-TEST(BadInputTable, HasAtLeastFifteenCases) { EXPECT_GE(cases().size(), 15u); }
+TEST(BadInputTable, HasAtLeastFifteenCases) {
+  EXPECT_GE(cases().size(), 15u);
+}
 
 TEST(Cli, HelpExplainsEverySubcommand) {
   RunResult r = runInterinet("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* s : {"generate", "render", "layout", "bench"}) EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  for (const char* s : {"generate", "render", "layout", "bench"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
   RunResult g = runInterinet("generate --help");
-  for (const char* s : {"--layout", "--trajectory", "--frames", "--seed", "--threads", "--spp", "--format", "--out", "--passes"})
+  for (const char* s : {"--layout", "--trajectory", "--frames", "--seed", "--threads", "--spp",
+                        "--format", "--out", "--passes"})
     EXPECT_NE(g.out.find(s), std::string::npos) << s;
 }
 

@@ -20,14 +20,18 @@ namespace {
 
 const std::string kSmall = "generate --width 160 --height 120 --fx 150 --fy 150 --no-progress ";
 
-fs::path seqDir(const fs::path& out) { return out / "default_room" / "seq_000"; }
+fs::path seqDir(const fs::path& out) {
+  return out / "default_room" / "seq_000";
+}
 
 size_t filesIn(const fs::path& dir, const std::string& suffix) {
   if (!fs::exists(dir)) return 0;
   size_t n = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     std::string s = e.path().filename().string();
-    if (s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0) ++n;
+    if (s.size() >= suffix.size() &&
+        s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0)
+      ++n;
   }
   return n;
 }
@@ -37,7 +41,8 @@ TEST(Generate, WritesEveryPassInAslAndTumLayouts) {
   RunResult r = runInterinet(kSmall + "--frames 4 --spp 2 --out " + (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   fs::path s = seqDir(dir / "out");
-  EXPECT_NE(r.out.find(s.string()), std::string::npos) << "should say where the frames are: " << r.out;
+  EXPECT_NE(r.out.find(s.string()), std::string::npos)
+      << "should say where the frames are: " << r.out;
   EXPECT_EQ(filesIn(s / "cam0/data", ".png"), 4u);
   EXPECT_EQ(filesIn(s / "depth0/data", ".png"), 4u);
   EXPECT_EQ(filesIn(s / "depth0/data", ".exr"), 4u);
@@ -47,11 +52,12 @@ TEST(Generate, WritesEveryPassInAslAndTumLayouts) {
   EXPECT_EQ(filesIn(s / "label0/data", "_instance.png"), 4u);
   EXPECT_EQ(filesIn(s / "rgb", ".png"), 4u);
   EXPECT_EQ(filesIn(s / "depth", ".png"), 4u);
-  for (const char* f : {"meta.json", "cam0/data.csv", "state_groundtruth_estimate0/data.csv", "rgb.txt", "depth.txt",
-                        "groundtruth.txt", "associations.txt"})
+  for (const char* f : {"meta.json", "cam0/data.csv", "state_groundtruth_estimate0/data.csv",
+                        "rgb.txt", "depth.txt", "groundtruth.txt", "associations.txt"})
     EXPECT_TRUE(fs::exists(s / f)) << f;
   EXPECT_EQ(countFiles(s) - readTree(s).size(), 0u);
-  for (const auto& [name, bytes] : readTree(s)) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+  for (const auto& [name, bytes] : readTree(s))
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
 
   // the TUM depth (x5000) and the ASL depth (mm) describe the same z-depth; the ray depth is
   // never shorter; the label image holds several NYU40 classes
@@ -146,7 +152,8 @@ TEST(Generate, CtrlCStopsCleanlyAndResumes) {
   fs::path out = dir / "out";
   std::string args = kSmall + "--frames 30 --spp 16 --out " + out.string();
   killAfterFrames(args, seqDir(out) / "cam0/data", 3, SIGINT);
-  for (const auto& [name, bytes] : readTree(out)) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+  for (const auto& [name, bytes] : readTree(out))
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
   RunResult resumed = runInterinet(args);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(filesIn(seqDir(out) / "cam0/data", ".png"), 30u);

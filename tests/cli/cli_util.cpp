@@ -16,8 +16,10 @@ namespace inet::test {
 
 RunResult runInterinet(const std::string& args) {
   static int counter = 0;
-  fs::path base = fs::temp_directory_path() / ("inet_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  std::string cmd = std::string(INET_BINARY) + " " + args + " >" + base.string() + ".out 2>" + base.string() + ".err";
+  fs::path base = fs::temp_directory_path() /
+                  ("inet_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  std::string cmd = std::string(INET_BINARY) + " " + args + " >" + base.string() + ".out 2>" +
+                    base.string() + ".err";
   RunResult r;
   pid_t pid = fork();
   if (pid == 0) {

@@ -17,13 +17,13 @@ RunResult runInterinet(const std::string& args);
 
 /// A fresh empty temporary folder for one test, removed by the destructor.
 class TempDir {
-public:
+ public:
   explicit TempDir(const std::string& name);
   ~TempDir();
   const std::filesystem::path& path() const { return path_; }
   std::filesystem::path operator/(const std::string& s) const { return path_ / s; }
 
-private:
+ private:
   std::filesystem::path path_;
 };
 

@@ -14,7 +14,8 @@ namespace inet {
 namespace {
 
 fs::path freshDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("inet_atomic_" + name + "_" + std::to_string(::getpid()));
+  fs::path d =
+      fs::temp_directory_path() / ("inet_atomic_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -54,7 +54,7 @@ std::string tbsBlock(const fs::path& p) {
 }
 
 class AslWriterTest : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override { writeSyntheticSequence(dir_, {"asl"}); }
   TempDir tmp_{"asl"};
   fs::path dir_ = tmp_ / "seq";

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 /// A fresh folder under the system temp dir, removed with its contents on destruction.
 class TempDir {
-public:
+ public:
   explicit TempDir(const std::string& tag) {
     path_ = fs::temp_directory_path() / ("inet_dataset_" + tag + "_" + std::to_string(::getpid()) +
                                          "_" + std::to_string(counter()++));
@@ -38,7 +38,7 @@ public:
   const fs::path& path() const { return path_; }
   fs::path operator/(const std::string& s) const { return path_ / s; }
 
-private:
+ private:
   static int& counter() {
     static int c = 0;
     return c;

@@ -73,7 +73,7 @@ int commentLines(const fs::path& p) {
 }
 
 class TumWriterTest : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override { writeSyntheticSequence(dir_, {"tum"}); }
   TempDir tmp_{"tum"};
   fs::path dir_ = tmp_ / "seq";

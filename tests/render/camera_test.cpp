@@ -49,8 +49,10 @@ TEST(Camera, RejectsBadFiles) {
   std::filesystem::create_directories(dir);
   const char* cases[] = {
       "{\"width\": 640}",
-      "{\"width\": 640, \"height\": 480, \"fx\": -1, \"fy\": 600, \"position\": [0,0,0], \"look_at\": [1,0,0]}",
-      "{\"width\": 640, \"height\": 480, \"fx\": 600, \"fy\": 600, \"position\": [0,0,0], \"look_at\": [0,0,0]}",
+      "{\"width\": 640, \"height\": 480, \"fx\": -1, \"fy\": 600, \"position\": [0,0,0], "
+      "\"look_at\": [1,0,0]}",
+      "{\"width\": 640, \"height\": 480, \"fx\": 600, \"fy\": 600, \"position\": [0,0,0], "
+      "\"look_at\": [0,0,0]}",
       "not json",
   };
   for (const char* c : cases) {
@@ -77,8 +79,10 @@ namespace {
 // which escaped as an unknown exception instead of an InputError.
 TEST(Camera, HugeNumberIsAnInputError) {
   EXPECT_THROW(parseCameraJson("{\"width\": 3e3333330}", "cam.json"), InputError);
-  EXPECT_THROW(parseCameraJson("{\"width\": 1e300, \"height\": 4, \"fx\": 1, \"fy\": 1, \"position\": [0,0,0], "
-                               "\"look_at\": [1,0,0]}", "cam.json"),
+  EXPECT_THROW(parseCameraJson(
+                   "{\"width\": 1e300, \"height\": 4, \"fx\": 1, \"fy\": 1, \"position\": [0,0,0], "
+                   "\"look_at\": [1,0,0]}",
+                   "cam.json"),
                InputError);
 }
 }  // namespace

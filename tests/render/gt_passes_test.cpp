@@ -70,7 +70,7 @@ std::optional<RefHit> hitSphere(const Vec3& c, double r, const Vec3& o, const Ve
 }
 
 class GroundTruthTest : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
     Mesh box = makePrimitive("box", {}, "test", "box");
     box.id = "box";
@@ -85,10 +85,13 @@ protected:
     scene_.materials = {m};
     // camera at (0,0,1) looking along +y; wall plane at y = 3 facing the camera
     wall_ = (Eigen::Translation3d(0, 3, 1) * Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()) *
-             Eigen::Scaling(Vec3(20, 20, 1))).matrix();
+             Eigen::Scaling(Vec3(20, 20, 1)))
+                .matrix();
     box_ = (Eigen::Translation3d(-0.6, 2.0, 0.8) * Eigen::Scaling(Vec3(0.5, 0.4, 0.6))).matrix();
-    rbox_ = (Eigen::Translation3d(0.1, 1.6, 1.3) * Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) *
-             Eigen::Scaling(Vec3(0.3, 0.2, 0.25))).matrix();
+    rbox_ =
+        (Eigen::Translation3d(0.1, 1.6, 1.3) * Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) *
+         Eigen::Scaling(Vec3(0.3, 0.2, 0.25)))
+            .matrix();
     sphere_c_ = Vec3(0.7, 2.2, 0.9);
     sphere_r_ = 0.35;
     Mat4 sph = (Eigen::Translation3d(sphere_c_) * Eigen::Scaling(sphere_r_)).matrix();
@@ -169,7 +172,8 @@ TEST_F(GroundTruthTest, DepthNormalsLabelsMatchAnalyticReference) {
       max_dz = std::max(max_dz, std::abs(f.depth_ray.at(x, y) - h.t * d_cam.norm()));
       Vec3 n_cam = R.transpose() * h.n_world;
       if (n_cam.dot(d_cam) > 0) n_cam = -n_cam;
-      for (int c = 0; c < 3; ++c) max_dn = std::max(max_dn, std::abs(f.normal.at(x, y, c) - n_cam[c]));
+      for (int c = 0; c < 3; ++c)
+        max_dn = std::max(max_dn, std::abs(f.normal.at(x, y, c) - n_cam[c]));
       EXPECT_FLOAT_EQ(f.albedo.at(x, y, 1), 0.5f);
     }
   }
@@ -185,7 +189,8 @@ TEST_F(GroundTruthTest, MissesAreZero) {
   CameraIntrinsics K;
   Frame f;
   // look away from everything (towards -y)
-  r.renderGroundTruth(K, Pose::lookAt(Vec3(0, 0, 1), Vec3(0, -5, 1), Vec3::UnitZ()), kGroundTruthPasses, f);
+  r.renderGroundTruth(K, Pose::lookAt(Vec3(0, 0, 1), Vec3(0, -5, 1), Vec3::UnitZ()),
+                      kGroundTruthPasses, f);
   for (size_t i = 0; i < f.depth_z.pixelCount(); ++i) {
     ASSERT_EQ(f.depth_z.data[i], 0.f);
     ASSERT_EQ(f.label.data[i], 0);

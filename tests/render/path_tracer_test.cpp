@@ -103,9 +103,14 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
   floor_T.diagonal() << 100, 100, 1, 1;
   Object fl{"floor", 0, 0, floor_T, 2, 1};
   const double h = 2.0, w = 0.2;  // square light of side w at height h, facing down
-  Object li{"light", 0, 1,
-            (Eigen::Translation3d(0, 0, h) * Eigen::AngleAxisd(M_PI, Vec3::UnitX()) * Eigen::Scaling(Vec3(w, w, 1))).matrix(),
-            35, 2};
+  Object li{"light",
+            0,
+            1,
+            (Eigen::Translation3d(0, 0, h) * Eigen::AngleAxisd(M_PI, Vec3::UnitX()) *
+             Eigen::Scaling(Vec3(w, w, 1)))
+                .matrix(),
+            35,
+            2};
   s.objects = {fl, li};
   Renderer r(s);
   // tiny field of view: every pixel sees the floor right under the light

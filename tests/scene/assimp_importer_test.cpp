@@ -13,11 +13,13 @@
 namespace inet {
 namespace {
 
+using test::errorOf;
 using test::fixture;
 using test::TempDir;
-using test::errorOf;
 
-int id(const char* name) { return *nyu40FromName(name); }
+int id(const char* name) {
+  return *nyu40FromName(name);
+}
 
 int findObject(const Scene& s, const std::string& name) {
   for (size_t i = 0; i < s.objects.size(); ++i)
@@ -37,7 +39,6 @@ Vec3 worldNormal(const Scene& s, const Object& o, int t) {
   Vec3 a = worldVertex(s, o, tri[0]), b = worldVertex(s, o, tri[1]), c = worldVertex(s, o, tri[2]);
   return (b - a).cross(c - a).normalized();
 }
-
 
 TEST(AssimpImporter, ObjObjectsMaterialsAndLabels) {
   ImportReport report;
@@ -214,7 +215,8 @@ TEST(AssimpImporter, LoadMeshFileMergesOrPicksByName) {
   for (const auto& p : chair.positions) max_x = std::max(max_x, p.x());
   EXPECT_EQ(max_x, 2.0f);
 
-  std::string e = errorOf([&] { loadMeshFile(path, 1, 'z', "sofa", "layout.json", "meshes[4].file"); });
+  std::string e =
+      errorOf([&] { loadMeshFile(path, 1, 'z', "sofa", "layout.json", "meshes[4].file"); });
   EXPECT_NE(e.find("layout.json: meshes[4].file:"), std::string::npos) << e;
   EXPECT_NE(e.find("chair_01, glow_panel"), std::string::npos) << "lists the names: " << e;
   e = errorOf([&] {

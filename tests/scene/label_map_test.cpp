@@ -10,7 +10,9 @@
 namespace inet {
 namespace {
 
-int id(const char* name) { return *nyu40FromName(name); }
+int id(const char* name) {
+  return *nyu40FromName(name);
+}
 
 /// Message of the InputError thrown while parsing `csv`, or "" when it parsed.
 std::string parseError(const std::string& csv) {
@@ -58,8 +60,8 @@ TEST(LabelMap, PrefixAndTokenMatches) {
   LabelMap map = LabelMap::parse("chair,chair\npainting,picture\nspeaker,otherprop\n", "m.csv");
   EXPECT_EQ(map.lookup("chair_01"), id("chair"));
   EXPECT_EQ(map.lookup("Chair.003"), id("chair"));
-  EXPECT_EQ(map.lookup("chairs"), id("chair"));               // prefix
-  EXPECT_EQ(map.lookup("painting.002"), id("picture"));       // SceneNet style
+  EXPECT_EQ(map.lookup("chairs"), id("chair"));                // prefix
+  EXPECT_EQ(map.lookup("painting.002"), id("picture"));        // SceneNet style
   EXPECT_EQ(map.lookup("top_painting_inner"), id("picture"));  // whole token
   EXPECT_EQ(map.lookup("left-speaker-2"), id("otherprop"));
   // "speakers" is neither a prefix-of nor a token-equal match for other keys

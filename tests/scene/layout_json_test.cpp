@@ -106,8 +106,16 @@ TEST(LayoutJson, CanonicalTextShape) {
 
 TEST(LayoutJson, EveryDoubleAndFloatRoundTripsExactly) {
   // awkward values: shortest text of each must parse back to the same bits
-  const double awkward[] = {0.1 + 0.2, 1.0 / 3.0, -0.0, 1e-300, 5e-324, 123456789.123456789,
-                            std::nextafter(1.0, 2.0), -2.5e-7, 9007199254740993.0, 1e15 + 0.5};
+  const double awkward[] = {0.1 + 0.2,
+                            1.0 / 3.0,
+                            -0.0,
+                            1e-300,
+                            5e-324,
+                            123456789.123456789,
+                            std::nextafter(1.0, 2.0),
+                            -2.5e-7,
+                            9007199254740993.0,
+                            1e15 + 0.5};
   Scene s;
   s.name = "exactness";
   Mesh tri;
@@ -135,7 +143,8 @@ TEST(LayoutJson, EveryDoubleAndFloatRoundTripsExactly) {
     o.instance = static_cast<int>(i) + 1;
     s.objects.push_back(o);
   }
-  s.point_lights.push_back({"p", Vec3(awkward[0], awkward[3], awkward[4]), Vec3f(0.3f, 0.f, 1e30f)});
+  s.point_lights.push_back(
+      {"p", Vec3(awkward[0], awkward[3], awkward[4]), Vec3f(0.3f, 0.f, 1e30f)});
   const std::string text = layoutToJson(s);
   Scene back = parseLayout(text, "memory.json");
   expectScenesEqual(s, back);
@@ -269,56 +278,50 @@ std::vector<BadLayout> meshCases() {
        "exactly one of"},
       {"unknown_primitive", edited([](json& j) { j["meshes"][0]["primitive"] = "torus"; }),
        "meshes[0].primitive", "box, cylinder, quad, sphere"},
-      {"bad_primitive_param",
-       edited([](json& j) {
+      {"bad_primitive_param", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"primitive", "cylinder"}, {"params", {{"segments", 2}}}};
        }),
        "meshes[0].params.segments", "[3, 256]"},
-      {"duplicate_mesh_id",
-       edited([](json& j) { j["meshes"].push_back({{"id", "box"}, {"primitive", "quad"}}); }),
+      {"duplicate_mesh_id", edited([](json& j) {
+         j["meshes"].push_back({{"id", "box"}, {"primitive", "quad"}});
+       }),
        "meshes[1].id", "duplicate id 'box'"},
-      {"triangle_index_out_of_range",
-       edited([](json& j) {
+      {"triangle_index_out_of_range", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"},
                            {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
                            {"triangles", {{0, 1, 3}}}};
        }),
        "meshes[0].triangles[0][2]", "outside 0..2"},
-      {"vertex_not_a_number",
-       edited([](json& j) {
+      {"vertex_not_a_number", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"},
                            {"vertices", {{0, 0, 0}, {"one", 0, 0}, {0, 1, 0}}},
                            {"triangles", {{0, 1, 2}}}};
        }),
        "meshes[0].vertices[1][0]", "expected a number"},
-      {"vertex_beyond_float",
-       edited([](json& j) {
+      {"vertex_beyond_float", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"},
                            {"vertices", {{1e39, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
                            {"triangles", {{0, 1, 2}}}};
        }),
        "meshes[0].vertices[0][0]", "single-precision"},
-      {"missing_mesh_file",
-       edited([](json& j) { j["meshes"][0] = {{"id", "box"}, {"file", "absent.obj"}}; }),
+      {"missing_mesh_file", edited([](json& j) {
+         j["meshes"][0] = {{"id", "box"}, {"file", "absent.obj"}};
+       }),
        "meshes[0].file", "absent.obj': file not found"},
-      {"malformed_obj",
-       edited([&](json& j) {
+      {"malformed_obj", edited([&](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"file", fixture_dir + "malformed.obj"}};
        }),
        "meshes[0].file", "vertex index out of range"},
-      {"mesh_name_not_in_file",
-       edited([&](json& j) {
+      {"mesh_name_not_in_file", edited([&](json& j) {
          j["meshes"][0] = {
              {"id", "box"}, {"file", fixture_dir + "two_parts.obj"}, {"mesh_name", "sofa"}};
        }),
        "meshes[0].file", "no node or mesh named 'sofa'"},
-      {"bad_up_axis",
-       edited([&](json& j) {
+      {"bad_up_axis", edited([&](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"file", fixture_dir + "two_parts.obj"}, {"up", "x"}};
        }),
        "meshes[0].up", "\"y\" or \"z\""},
-      {"zero_file_scale",
-       edited([&](json& j) {
+      {"zero_file_scale", edited([&](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"file", fixture_dir + "two_parts.obj"}, {"scale", 0}};
        }),
        "meshes[0].scale", "> 0"},
@@ -328,35 +331,36 @@ std::vector<BadLayout> meshCases() {
 /// Materials, objects (references, transforms, labels, instances) and point lights.
 std::vector<BadLayout> objectCases() {
   return {
-      {"albedo_above_one", edited([](json& j) { j["materials"][0]["albedo"] = {0.5, 1.5, 0.5}; }),
+      {"albedo_above_one", edited([](json& j) {
+         j["materials"][0]["albedo"] = {0.5, 1.5, 0.5};
+       }),
        "materials[0].albedo", "[0, 1]"},
       {"unknown_material_type", edited([](json& j) { j["materials"][0]["type"] = "glass"; }),
        "materials[0].type", "valid: lambertian"},
-      {"negative_emission",
-       edited([](json& j) { j["materials"][0]["emission"] = {1, -1, 1}; }),
+      {"negative_emission", edited([](json& j) {
+         j["materials"][0]["emission"] = {1, -1, 1};
+       }),
        "materials[0].emission", ">= 0"},
-      {"albedo_two_channels", edited([](json& j) { j["materials"][0]["albedo"] = {0.5, 0.5}; }),
+      {"albedo_two_channels", edited([](json& j) {
+         j["materials"][0]["albedo"] = {0.5, 0.5};
+       }),
        "materials[0].albedo", "array of 3 numbers"},
       {"unknown_mesh_ref", edited([](json& j) { j["objects"][0]["mesh"] = "crate_mesh"; }),
        "objects[0].mesh", "unknown mesh id 'crate_mesh' (defined: box)"},
       {"unknown_material_ref", edited([](json& j) { j["objects"][0]["material"] = "black"; }),
        "objects[0].material", "unknown material id 'black'"},
-      {"transform_15_numbers",
-       edited([](json& j) { j["objects"][0]["transform"].erase(15); }), "objects[0].transform",
-       "array of 16 numbers"},
-      {"transform_string_element",
-       edited([](json& j) { j["objects"][0]["transform"][3] = "2"; }), "objects[0].transform[3]",
-       "expected a number"},
-      {"mirror_transform",
-       edited([](json& j) {
+      {"transform_15_numbers", edited([](json& j) { j["objects"][0]["transform"].erase(15); }),
+       "objects[0].transform", "array of 16 numbers"},
+      {"transform_string_element", edited([](json& j) { j["objects"][0]["transform"][3] = "2"; }),
+       "objects[0].transform[3]", "expected a number"},
+      {"mirror_transform", edited([](json& j) {
          j["objects"].push_back(j["objects"][0]);
          j["objects"][1]["transform"][0] = -1;
        }),
        "objects[1] ('crate').transform", "mirror"},
       {"zero_scale_transform", edited([](json& j) { j["objects"][0]["transform"][10] = 0; }),
        "objects[0] ('crate').transform", "zero"},
-      {"unknown_category",
-       edited([](json& j) {
+      {"unknown_category", edited([](json& j) {
          j["objects"][0].erase("nyu40");
          j["objects"][0]["category"] = "crate";
        }),

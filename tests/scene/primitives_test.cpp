@@ -17,7 +17,9 @@ namespace {
 
 using test::errorOf;
 
-Vec3 vertex(const Mesh& m, const Tri& t, int k) { return m.positions[t[k]].cast<double>(); }
+Vec3 vertex(const Mesh& m, const Tri& t, int k) {
+  return m.positions[t[k]].cast<double>();
+}
 
 /// Unnormalised geometric normal (b - a) x (c - a): the winding defines which side is "out".
 Vec3 faceNormal(const Mesh& m, const Tri& t) {
@@ -114,18 +116,26 @@ TEST(Primitives, SphereIsAnalytic) {
   EXPECT_EQ(makePrimitive("sphere", {}, "t", "s").sphere_radius, 0.5f);
 }
 
-
 TEST(Primitives, BadParametersNameTheField) {
-  EXPECT_NE(errorOf([] { makePrimitive("cylinder", {{"segments", 2}}, "f.json", "m"); })
-                .find("f.json: m.segments"),
+  EXPECT_NE(errorOf([] {
+              makePrimitive("cylinder", {{"segments", 2}}, "f.json", "m");
+            }).find("f.json: m.segments"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makePrimitive("cylinder", {{"segments", 257}}, "f", "m"); }).find("m.segments"),
+  EXPECT_NE(errorOf([] {
+              makePrimitive("cylinder", {{"segments", 257}}, "f", "m");
+            }).find("m.segments"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makePrimitive("cylinder", {{"segments", 3.5}}, "f", "m"); }).find("integer"),
+  EXPECT_NE(errorOf([] {
+              makePrimitive("cylinder", {{"segments", 3.5}}, "f", "m");
+            }).find("integer"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makePrimitive("sphere", {{"radius", 0}}, "f", "m"); }).find("m.radius"),
+  EXPECT_NE(errorOf([] {
+              makePrimitive("sphere", {{"radius", 0}}, "f", "m");
+            }).find("m.radius"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makePrimitive("box", {{"size", 2}}, "f", "m"); }).find("m.size"),
+  EXPECT_NE(errorOf([] {
+              makePrimitive("box", {{"size", 2}}, "f", "m");
+            }).find("m.size"),
             std::string::npos);
   std::string unknown = errorOf([] { makePrimitive("torus", {}, "f", "m"); });
   EXPECT_NE(unknown.find("torus"), std::string::npos);

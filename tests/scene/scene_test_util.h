@@ -32,11 +32,13 @@ std::string errorOf(F f) {
   return {};
 }
 
-inline std::filesystem::path sharedDir() { return std::filesystem::path(INET_SHARED_DIR); }
+inline std::filesystem::path sharedDir() {
+  return std::filesystem::path(INET_SHARED_DIR);
+}
 
 /// A fresh folder under the system temp folder, removed with everything in it at scope exit.
 class TempDir {
-public:
+ public:
   TempDir() {
     static int counter = 0;
     path_ = std::filesystem::temp_directory_path() /
@@ -60,7 +62,7 @@ public:
     return p.string();
   }
 
-private:
+ private:
   std::filesystem::path path_;
 };
 

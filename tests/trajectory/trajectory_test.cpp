@@ -30,7 +30,8 @@ TEST(SecondsParsing, ExactNanoseconds) {
 }
 
 TEST(TumTrajectory, ReadsRealGroundTruthAndRoundTrips) {
-  std::string path = std::string(INET_SHARED_DIR) + "/data/trajectories/tum_rgbd_fr1_xyz_groundtruth.txt";
+  std::string path =
+      std::string(INET_SHARED_DIR) + "/data/trajectories/tum_rgbd_fr1_xyz_groundtruth.txt";
   if (!fs::exists(path)) GTEST_SKIP() << "../shared/data/trajectories not found";
   Trajectory t = readTumTrajectory(path);
   EXPECT_EQ(t.size(), 3000u);
@@ -41,7 +42,8 @@ TEST(TumTrajectory, ReadsRealGroundTruthAndRoundTrips) {
   for (size_t i = 0; i < t.size(); ++i) {
     EXPECT_EQ(back.poses[i].t_ns, t.poses[i].t_ns);
     EXPECT_NEAR((back.poses[i].T_world_camera.t - t.poses[i].T_world_camera.t).norm(), 0, 1e-9);
-    EXPECT_NEAR(back.poses[i].T_world_camera.q.angularDistance(t.poses[i].T_world_camera.q), 0, 1e-8);
+    EXPECT_NEAR(back.poses[i].T_world_camera.q.angularDistance(t.poses[i].T_world_camera.q), 0,
+                1e-8);
   }
   fs::remove(out);
 }
@@ -66,7 +68,8 @@ TEST(BuiltinTrajectory, CollisionFreeInDefaultRoom) {
   K.height = 32;
   K.fx = K.fy = 8;  // ~127 degree field of view
   K.cx = K.cy = 16;
-  const Vec3 dirs[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+  const Vec3 dirs[6] = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
+                        -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
   double min_dist = 1e9;
   for (size_t k = 0; k < traj.size(); k += 10) {
     const Vec3& eye = traj.poses[k].T_world_camera.t;
@@ -75,7 +78,8 @@ TEST(BuiltinTrajectory, CollisionFreeInDefaultRoom) {
     for (const Vec3& d : dirs) {
       Vec3 up = std::abs(d.z()) > 0.5 ? Vec3::UnitX() : Vec3::UnitZ();
       Frame f;
-      r.renderGroundTruth(K, Pose::lookAt(eye, eye + d, up), static_cast<PassMask>(Pass::DepthRay), f);
+      r.renderGroundTruth(K, Pose::lookAt(eye, eye + d, up), static_cast<PassMask>(Pass::DepthRay),
+                          f);
       for (float v : f.depth_ray.data) {
         ASSERT_GT(v, 0.f) << "ray escaped the closed room";
         min_dist = std::min(min_dist, static_cast<double>(v));
@@ -90,7 +94,8 @@ TEST(BuiltinTrajectory, CollisionFreeInDefaultRoom) {
 
 TEST(Trajectory, VelocityFromPositions) {
   Trajectory t;
-  for (int k = 0; k < 5; ++k) t.poses.push_back({k * 100000000LL, Pose{Quat::Identity(), Vec3(0.2 * k, 0, 0)}});
+  for (int k = 0; k < 5; ++k)
+    t.poses.push_back({k * 100000000LL, Pose{Quat::Identity(), Vec3(0.2 * k, 0, 0)}});
   EXPECT_NEAR((t.velocityWorld(0) - Vec3(2, 0, 0)).norm(), 0, 1e-9);
   EXPECT_NEAR((t.velocityWorld(2) - Vec3(2, 0, 0)).norm(), 0, 1e-9);
   EXPECT_NEAR((t.velocityWorld(4) - Vec3(2, 0, 0)).norm(), 0, 1e-9);
