@@ -91,6 +91,7 @@ void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
   allocateInt(frame.label, K, has(passes, Pass::Label));
   allocateInt(frame.instance, K, has(passes, Pass::Instance));
   frame.passes = (frame.passes & static_cast<PassMask>(Pass::Rgb)) | (passes & kGroundTruthPasses);
+  if ((passes & kGroundTruthPasses) == 0) return;
 
   const Eigen::Matrix3f R_world_camera = T_world_camera.rotation().cast<float>();
   const Eigen::Vector3f origin = T_world_camera.t.cast<float>();

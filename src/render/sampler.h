@@ -1,0 +1,132 @@
+#pragma once
+// Low-discrepancy samples for the path tracer: a "padded" scrambled Sobol sampler.
+//
+// Every 2D sample of a path (pixel position, light sample, BSDF sample, ...) comes from the first
+// two dimensions of the Sobol sequence, a (0,2)-sequence, so the spp points of one pixel are
+// stratified in every pair of dimensions. Pairs are decorrelated from each other by shuffling the
+// sample index per pair and Owen-scrambling each coordinate, both by hashing (Burley, "Practical
+// Hash-based Owen Scrambling", JCGT 2020; the same scheme as pbrt-v4's PaddedSobolSampler).
+// Hand-written because the generator is a dozen lines of bit operations and no Debian package
+// offers random access to scrambled Sobol points by (pixel, sample, dimension).
+//
+// All state is a pure function of (seed, frame, pixel, sample index), so the image does not depend
+// on thread count or tile order. Past kMaxPairs pairs (deep bounces) it continues with the
+// counter-based RNG, where stratification no longer pays.
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "core/rng.h"
+
+namespace inet {
+
+namespace sobol_detail {
+
+inline uint32_t reverseBits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+/// Laine-Karras style permutation: each output bit depends only on the same and lower input bits.
+inline uint32_t laineKarras(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+/// Nested uniform (Owen) scrambling of a 32-bit fixed-point value in [0, 1).
+inline uint32_t owenScramble(uint32_t x, uint32_t seed) {
+  return reverseBits(laineKarras(reverseBits(x), seed));
+}
+
+/// Sobol dimension 0 (van der Corput in base 2) at index i, as 32-bit fixed point.
+inline uint32_t sobol0(uint32_t i) {
+  return reverseBits(i);
+}
+
+/// Sobol dimension 1 at index i (primitive polynomial x + 1, direction numbers all 1), bit by bit.
+inline uint32_t sobol1Slow(uint32_t i) {
+  uint32_t r = 0;
+  for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
+    if (i & 1u) r ^= v;
+  return r;
+}
+
+/// The same, by table: the generator is linear over GF(2), so the index is taken a byte at a time.
+inline uint32_t sobol1(uint32_t i) {
+  struct Tables {
+    uint32_t t[4][256];
+    Tables() {
+      for (int b = 0; b < 4; ++b)
+        for (uint32_t v = 0; v < 256; ++v) t[b][v] = sobol1Slow(v << (8 * b));
+    }
+  };
+  static const Tables tables;
+  return tables.t[0][i & 0xff] ^ tables.t[1][(i >> 8) & 0xff] ^ tables.t[2][(i >> 16) & 0xff] ^
+         tables.t[3][i >> 24];
+}
+
+/// 32-bit hash of four words (a murmur3-style finaliser over a splitmix combination).
+inline uint32_t hash4(uint64_t a, uint32_t b, uint32_t c, uint32_t d) {
+  uint64_t h = a * 0x9e3779b97f4a7c15ull;
+  h ^= (static_cast<uint64_t>(b) << 32 | c) + 0x632be59bd9b4e019ull + (h << 6) + (h >> 2);
+  h ^= static_cast<uint64_t>(d) * 0xbf58476d1ce4e5b9ull;
+  h ^= h >> 31;
+  h *= 0x94d049bb133111ebull;
+  h ^= h >> 29;
+  return static_cast<uint32_t>(h ^ (h >> 32));
+}
+
+}  // namespace sobol_detail
+
+class PixelSampler {
+ public:
+  static constexpr uint32_t kMaxPairs = 32;
+
+  /// spp: samples per pixel of the image (sample_index < spp); sets the size of the power-of-two
+  /// block within which sample indices are shuffled.
+  PixelSampler(uint64_t seed, uint32_t frame, uint32_t pixel, uint32_t sample_index, uint32_t spp)
+      : seed_(seed),
+        frame_(frame),
+        pixel_(pixel),
+        index_(sample_index),
+        index_mask_(blockMask(spp)),
+        rng_(seed, RngStream::PathTracer, frame, pixel, sample_index) {}
+
+  /// The next 2D sample in [0,1)^2.
+  Eigen::Vector2f get2D() {
+    if (pair_ >= kMaxPairs) return {rng_.uniform(), rng_.uniform()};
+    using namespace sobol_detail;
+    uint32_t h = hash4(seed_, frame_, pixel_, pair_++);
+    // Shuffle the sample index within its power-of-two block. Owen scrambling maps a block with
+    // fixed high bits onto a block with fixed high bits, so only the low bits matter; dropping
+    // the constant high part is a digital shift of the net, absorbed by the scrambles below.
+    uint32_t i = owenScramble(index_, h) & index_mask_;
+    // owenScramble(sobol0(i)) == reverseBits(laineKarras(i)): dimension 0 is i bit-reversed
+    uint32_t x = reverseBits(laineKarras(i, h * 0x68bc21ebu + 1u));
+    uint32_t y = owenScramble(sobol1(i), h * 0x02e5be93u + 2u);
+    return {toUnit(x), toUnit(y)};
+  }
+  /// The next 1D sample in [0, 1) (stratified: the first coordinate of a fresh pair).
+  float get1D() { return get2D().x(); }
+
+ private:
+  static uint32_t blockMask(uint32_t spp) {
+    uint32_t m = 0;
+    while (m < spp - 1) m = (m << 1) | 1u;
+    return spp <= 1 ? 0u : m;
+  }
+  static float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+
+  uint64_t seed_;
+  uint32_t frame_, pixel_, index_, index_mask_;
+  uint32_t pair_ = 0;
+  CounterRng rng_;
+};
+
+}  // namespace inet
