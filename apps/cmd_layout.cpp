@@ -24,8 +24,8 @@ void showScene(const Scene& s) {
   fmt::print("meshes     {} ({} triangles placed in the world)\n", s.meshes.size(),
              s.triangleCount());
   fmt::print("materials  {}\n", s.materials.size());
-  fmt::print("objects    {} parts in {} instances, {} emissive, {} point lights\n",
-             s.objects.size(), instances.size(), emitters, s.point_lights.size());
+  fmt::print("objects    {} parts in {} instances, {} emissive, {} analytic lights\n",
+             s.objects.size(), instances.size(), emitters, s.lights.size());
   fmt::print("bounds     x [{:.3f}, {:.3f}]  y [{:.3f}, {:.3f}]  z [{:.3f}, {:.3f}] m\n", lo.x(),
              hi.x(), lo.y(), hi.y(), lo.z(), hi.z());
   fmt::print("instances per NYU40 class:\n");

@@ -4,22 +4,13 @@
 // depend on the platform's float rounding mode or on std::lround's half-away-from-zero rule.
 #include <cstdint>
 
+#include "core/color.h"
 #include "core/image.h"
 
 namespace inet {
 
-/// sRGB opto-electronic transfer function (IEC 61966-2-1): linear [0, 1] -> encoded [0, 1]:
-/// 12.92 v for v <= 0.0031308, else 1.055 v^(1/2.4) - 0.055. Reference, double precision.
-double srgbOetf(double linear);
-
-/// One linear value -> 8-bit sRGB code, exactly floor(255 * srgbOetf(clamp(v, 0, 1)) + 0.5) for
-/// every float v (NaN and negatives give 0, +inf gives 255). Implemented with a 4096-bucket table
-/// plus the 255 exact float thresholds between codes, so it is fast and bit-exact.
-uint8_t linearToSrgb8(float linear);
-
-/// Linear RGB (or any channel count) -> 8-bit sRGB, per channel as linearToSrgb8. Used for the
-/// colour image and for albedo.
-ImageU8 encodeSrgb8(const ImageF& linear);
+// srgbOetf, linearToSrgb8 and encodeSrgb8 (exact sRGB encoding) live in core/color.h, so the
+// renderer's camera response can use them too.
 
 /// Depth scales: stored value per metre.
 constexpr double kDepthScaleMm = 1000.0;   ///< ASL depth0 PNG: millimetres

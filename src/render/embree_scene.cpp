@@ -23,10 +23,6 @@ void checkDevice(RTCDevice device, const char* what) {
         fmt::format("Embree failed in {} (error {})", what, static_cast<int>(err)));
 }
 
-float luminance(const Vec3f& c) {
-  return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
-}
-
 }  // namespace
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
@@ -71,7 +67,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   rtcCommitScene(scene_);
   checkDevice(device_, "scene build");
   buildLights(scene);
-  point_lights_ = scene.point_lights;
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -138,12 +133,13 @@ RTCScene EmbreeScene::meshScene(int mesh_index, const Scene& scene) {
 }
 
 void EmbreeScene::buildLights(const Scene& scene) {
+  std::vector<EmissiveTriangle> triangles;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& o = scene.objects[i];
     const Material& mat = scene.materials[o.material];
     const Mesh& mesh = scene.meshes[o.mesh];
-    if (!mat.isEmissive() || mesh.isSphere()) continue;  // emissive spheres: not sampled (issue 3)
-    objects_[i].first_light = static_cast<int>(lights_.size());
+    if (!mat.isEmissive() || mesh.isSphere()) continue;  // emissive spheres: not sampled yet
+    objects_[i].first_light = static_cast<int>(triangles.size());
     for (const Tri& t : mesh.triangles) {
       Vec3f p[3];
       for (int k = 0; k < 3; ++k)
@@ -158,32 +154,15 @@ void EmbreeScene::buildLights(const Scene& scene) {
       e.area = 0.5f * c.norm();
       e.normal = c.norm() > 0 ? Vec3f(c.normalized()) : Vec3f(0, 0, 1);
       e.radiance = mat.emission;
-      lights_.push_back(e);
+      triangles.push_back(e);
     }
   }
-  double total = 0;
-  std::vector<double> power(lights_.size());
-  for (size_t i = 0; i < lights_.size(); ++i) {
-    power[i] = static_cast<double>(lights_[i].area) * luminance(lights_[i].radiance);
-    total += power[i];
+  float radius = 1.f;
+  if (!scene.objects.empty()) {
+    auto [lo, hi] = scene.bounds();
+    radius = std::max(radius, static_cast<float>(0.5 * (hi - lo).norm()));
   }
-  light_cdf_.resize(lights_.size());
-  light_pmf_.resize(lights_.size());
-  double acc = 0;
-  for (size_t i = 0; i < lights_.size(); ++i) {
-    acc += power[i];
-    light_cdf_[i] = static_cast<float>(acc / total);
-    light_pmf_[i] = static_cast<float>(power[i] / total);
-  }
-  if (!light_cdf_.empty()) light_cdf_.back() = 1.0f;
-}
-
-int EmbreeScene::sampleLight(float u, float& pmf) const {
-  auto it = std::upper_bound(light_cdf_.begin(), light_cdf_.end(), u);
-  int i = static_cast<int>(std::min<ptrdiff_t>(it - light_cdf_.begin(), light_cdf_.size() - 1));
-  while (i > 0 && light_pmf_[i] == 0.f) --i;  // never return a zero-power light
-  pmf = light_pmf_[i];
-  return i;
+  lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), radius);
 }
 
 }  // namespace inet

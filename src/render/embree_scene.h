@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "render/lights.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -23,14 +24,6 @@ struct ObjectShading {
   uint16_t instance = 0;
   Eigen::Matrix3f normal_to_world = Eigen::Matrix3f::Identity();  ///< inverse transpose
   int first_light = -1;  ///< index of this object's first emissive triangle, -1 if none
-};
-
-/// An emissive triangle in world space (one-sided: emits along `normal`).
-struct EmissiveTriangle {
-  Vec3f p0, e1, e2;  ///< vertex and edges
-  Vec3f normal;      ///< unit geometric normal
-  float area = 0.f;
-  Vec3f radiance;
 };
 
 class EmbreeScene {
@@ -55,13 +48,8 @@ class EmbreeScene {
     return (objects_[object].normal_to_world * ng_object).normalized();
   }
 
-  const std::vector<EmissiveTriangle>& lights() const { return lights_; }
-  /// Picks a light with probability proportional to its power; u in [0,1). Returns the index
-  /// and its probability.
-  int sampleLight(float u, float& pmf) const;
-  /// Probability that sampleLight picks light i.
-  float lightPmf(int i) const { return light_pmf_[i]; }
-  const std::vector<PointLight>& pointLights() const { return point_lights_; }
+  /// Every light that is on (emissive triangles first), for next-event estimation.
+  const SceneLights& lights() const { return *lights_; }
   double buildMs() const { return build_ms_; }
 
  private:
@@ -74,9 +62,7 @@ class EmbreeScene {
   std::vector<RTCScene> mesh_scenes_;  ///< per mesh, for instanced meshes (nullptr otherwise)
   std::vector<int> geom_to_object_;
   std::vector<ObjectShading> objects_;
-  std::vector<EmissiveTriangle> lights_;
-  std::vector<float> light_cdf_, light_pmf_;
-  std::vector<PointLight> point_lights_;
+  std::unique_ptr<SceneLights> lights_;
   double build_ms_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -52,10 +53,12 @@ struct PassWriter {
   }
 
   /// t: ray parameter (= z-depth, the camera-frame direction has z = 1); d_len: |d_camera|.
-  void hit(size_t i, float t, float d_len, const Eigen::Vector3f& d_world, int object,
-           const Vec3f& ng) const {
+  /// t: ray parameter; z_per_t: camera-frame z per unit t (1 for pinhole rays, whose direction
+  /// has z = 1, so the z-depth is exactly t); d_len: |d_camera|.
+  void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& d_world,
+           int object, const Vec3f& ng) const {
     const ObjectShading& s = scene.object(object);
-    if (depth_z) depth_z[i] = t;
+    if (depth_z) depth_z[i] = z_per_t == 1.f ? t : std::max(0.f, t * z_per_t);
     if (depth_ray) depth_ray[i] = t * d_len;
     if (normal) {
       Vec3f n = s.normal_to_world * ng;
@@ -82,8 +85,9 @@ T* dataOrNull(Image<T>& img) {
 
 }  // namespace
 
-void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
-                       const Pose& T_world_camera, PassMask passes, Frame& frame) {
+void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Pose& T_world_camera,
+                       PassMask passes, Frame& frame) {
+  const CameraIntrinsics& K = lens.K;
   allocate(frame.depth_z, K, 1, has(passes, Pass::DepthZ));
   allocate(frame.depth_ray, K, 1, has(passes, Pass::DepthRay));
   allocate(frame.normal, K, 3, has(passes, Pass::Normal));
@@ -103,7 +107,9 @@ void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
                     dataOrNull(frame.albedo),
                     dataOrNull(frame.label),
                     dataOrNull(frame.instance)};
-  // camera-frame direction through pixel centre (x, y) is (ax*x + bx, ay*y + by, 1)
+  // Plain pinhole: the camera-frame direction through pixel centre (x, y) is
+  // (ax*x + bx, ay*y + by, 1), computed incrementally. Other lenses ask generateRay.
+  const bool simple = lens.type == LensType::Pinhole && !lens.hasDistortion();
   const float ax = static_cast<float>(1.0 / K.fx), bx = static_cast<float>((0.5 - K.cx) / K.fx);
   const float ay = static_cast<float>(1.0 / K.fy), by = static_cast<float>((0.5 - K.cy) / K.fy);
 
@@ -115,11 +121,9 @@ void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         alignas(64) RTCRayHit16 rh;
         alignas(64) int valid[16];
-        float d_len[16];
+        float d_len[16], z_per_t[16];
+        bool has_ray[16];
         for (int k = 0; k < 16; ++k) {
-          rh.ray.org_x[k] = origin.x();
-          rh.ray.org_y[k] = origin.y();
-          rh.ray.org_z[k] = origin.z();
           rh.ray.time[k] = 0.f;
           rh.ray.mask[k] = 0xffffffffu;
           rh.ray.id[k] = static_cast<unsigned>(k);
@@ -129,10 +133,22 @@ void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
           for (int bx0 = r.cols().begin(); bx0 < r.cols().end(); bx0 += 4) {
             for (int k = 0; k < 16; ++k) {
               int x = bx0 + (k & 3), y = by0 + (k >> 2);
-              valid[k] = (x < r.cols().end() && y < r.rows().end()) ? -1 : 0;
-              Eigen::Vector3f d_cam(ax * x + bx, ay * y + by, 1.f);
+              bool inside = x < r.cols().end() && y < r.rows().end();
+              Eigen::Vector3f o_cam = Eigen::Vector3f::Zero(), d_cam(ax * x + bx, ay * y + by, 1.f);
+              has_ray[k] = true;
+              if (!simple && inside) {
+                CameraRay cr;
+                has_ray[k] = generateRay(lens, x + 0.5, y + 0.5, kLensCentre, cr);
+                o_cam = cr.origin.cast<float>();
+                d_cam = cr.dir.cast<float>();
+              }
+              valid[k] = (inside && has_ray[k]) ? -1 : 0;
               d_len[k] = d_cam.norm();
-              Eigen::Vector3f d = R_world_camera * d_cam;
+              z_per_t[k] = simple ? 1.f : d_cam.z();
+              Eigen::Vector3f d = R_world_camera * d_cam, o = R_world_camera * o_cam + origin;
+              rh.ray.org_x[k] = o.x();
+              rh.ray.org_y[k] = o.y();
+              rh.ray.org_z[k] = o.z();
               rh.ray.dir_x[k] = d.x();
               rh.ray.dir_y[k] = d.y();
               rh.ray.dir_z[k] = d.z();
@@ -143,14 +159,15 @@ void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
             }
             rtcIntersect16(valid, scene.handle(), &ctx, &rh);
             for (int k = 0; k < 16; ++k) {
-              if (!valid[k]) continue;
-              size_t i = static_cast<size_t>(by0 + (k >> 2)) * K.width + bx0 + (k & 3);
-              if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+              int x = bx0 + (k & 3), y = by0 + (k >> 2);
+              if (x >= r.cols().end() || y >= r.rows().end()) continue;
+              size_t i = static_cast<size_t>(y) * K.width + x;
+              if (!has_ray[k] || rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
                 writer.miss(i);
                 continue;
               }
               int object = scene.objectOf(rh.hit.geomID[k], rh.hit.instID[0][k]);
-              writer.hit(i, rh.ray.tfar[k], d_len[k],
+              writer.hit(i, rh.ray.tfar[k], z_per_t[k], d_len[k],
                          Eigen::Vector3f(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]), object,
                          Vec3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]));
             }

@@ -10,12 +10,17 @@
 #include "render/camera.h"
 #include "render/embree_scene.h"
 #include "render/frame.h"
+#include "render/lens.h"
 
 namespace inet {
 
 /// Fills the ground-truth images of `frame` selected by `passes` (the RGB bit is ignored).
 /// Images are (re)allocated to the camera size. Runs in parallel over tiles (TBB).
-void renderGroundTruth(const EmbreeScene& scene, const CameraIntrinsics& K,
-                       const Pose& T_world_camera, PassMask passes, Frame& frame);
+/// Any lens model: rays come from generateRay at the pixel centre through the lens centre (the
+/// in-focus chief ray of a thin lens). `depth` is the camera-frame z of the hit (0 if behind the
+/// camera), `ray_depth` its distance from the ray origin; pixels without a ray (outside a
+/// fisheye circle) are 0 in every pass.
+void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Pose& T_world_camera,
+                       PassMask passes, Frame& frame);
 
 }  // namespace inet

@@ -11,6 +11,7 @@
 #include "core/pose.h"
 #include "render/camera.h"
 #include "render/frame.h"
+#include "render/lens.h"
 
 namespace inet {
 
@@ -28,7 +29,7 @@ struct RenderOptions {
 /// The inputs of one frame's render.
 struct RenderContext {
   const EmbreeScene& scene;
-  const CameraIntrinsics& K;
+  const LensModel& lens;
   const Pose& T_world_camera;
   const RenderOptions& options;
   uint32_t frame_index;  ///< keys the RNG, so each frame gets its own independent samples

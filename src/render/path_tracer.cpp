@@ -1,5 +1,6 @@
-// Unidirectional path tracer: Lambertian surfaces, one-sided emissive triangles (area lights)
-// and point lights; next-event estimation combined with BSDF sampling by multiple importance
+// Unidirectional path tracer: Lambertian surfaces, one-sided emissive triangles (area lights),
+// point, spot and sun lights (lights.h); next-event estimation combined with BSDF sampling by
+// multiple importance
 // sampling (power heuristic, Veach 1997), Russian roulette after three bounces. One ray per call
 // (rtcIntersect1 / rtcOccluded1); issue 3 adds the other BSDF families and packet tracing.
 //
@@ -55,7 +56,8 @@ class PathTracer final : public Integrator {
   std::string name() const override { return "path"; }
 
   void render(const RenderContext& ctx, ImageF& rgb) const override {
-    const CameraIntrinsics& K = ctx.K;
+    const CameraIntrinsics& K = ctx.lens.K;
+    const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
@@ -68,8 +70,13 @@ class PathTracer final : public Integrator {
             PixelSampler smp(ctx.options.seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
                              static_cast<uint32_t>(spp));
             Eigen::Vector2f j = smp.get2D();
-            Vec3f d = R * K.rayCamera(x + j.x(), y + j.y()).cast<float>();
-            sum += radiance(ctx, Ray{origin, d.normalized()}, smp);
+            Eigen::Vector2d lens_uv = thin_lens ? smp.get2D().cast<double>() : kLensCentre;
+            CameraRay cr;
+            if (!generateRay(ctx.lens, x + j.x(), y + j.y(), lens_uv, cr))
+              continue;  // no ray: black
+            Vec3f o = R * cr.origin.cast<float>() + origin;
+            Vec3f d = R * cr.dir.cast<float>();
+            sum += radiance(ctx, Ray{o, d.normalized()}, smp);
           }
           for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / static_cast<float>(spp);
         }
@@ -131,7 +138,15 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp)
   float tnear = 0.f;
   for (int bounce = 0;; ++bounce) {
     RTCRayHit rh;
-    if (!intersect(scene, ray, tnear, rh)) break;
+    if (!intersect(scene, ray, tnear, rh)) {
+      float sun_pdf;
+      Vec3f sun = scene.lights().sunRadiance(ray.d, sun_pdf);
+      if (sun_pdf > 0.f) {
+        float w = from_camera ? 1.f : powerHeuristic(prev_bsdf_pdf, sun_pdf);
+        L += w * throughput.cwiseProduct(sun);
+      }
+      break;
+    }
     int object = scene.objectOf(rh.hit);
     const ObjectShading& s = scene.object(object);
     Vec3f ng = scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
@@ -141,10 +156,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp)
     if (s.first_light >= 0 && cos_emit > 0.f) {
       float w = 1.f;
       if (!from_camera) {
-        int li = s.first_light + static_cast<int>(rh.hit.primID);
-        const EmissiveTriangle& e = scene.lights()[li];
-        float light_pdf = scene.lightPmf(li) / e.area * t * t / cos_emit;
-        w = powerHeuristic(prev_bsdf_pdf, light_pdf);
+        size_t li = static_cast<size_t>(s.first_light) + rh.hit.primID;
+        w = powerHeuristic(prev_bsdf_pdf, scene.lights().trianglePdf(li, t, cos_emit));
       }
       L += w * throughput.cwiseProduct(s.emission);
     }
@@ -154,35 +167,20 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp)
     throughput = throughput.cwiseProduct(s.albedo);
     if (throughput.maxCoeff() <= 0.f) break;
     // throughput now includes the BSDF weight f*cos/pdf = albedo for cosine sampling; direct
-    // light uses f = albedo / pi, so pass the pre-multiplied throughput and divide by pi there.
+    // light uses f = albedo / pi, so it is divided by pi below.
     Vec3f direct = Vec3f::Zero();
     const Eigen::Vector2f u_select_rr = smp.get2D();  // x: which light, y: Russian roulette
     const Eigen::Vector2f u_light = smp.get2D();
     const Eigen::Vector2f u_bsdf = smp.get2D();
-    if (!scene.lights().empty()) {
-      float pmf;
-      int li = scene.sampleLight(u_select_rr.x(), pmf);
-      const EmissiveTriangle& e = scene.lights()[li];
-      float su = std::sqrt(u_light.x());
-      Vec3f q = e.p0 + e.e1 * (1.f - su) + e.e2 * (su * u_light.y());
-      Vec3f wi = q - p_off;
-      float dist2 = wi.squaredNorm(), dist = std::sqrt(dist2);
-      wi /= dist;
-      float cos_s = n.dot(wi), cos_l = -e.normal.dot(wi);
-      if (cos_s > 0.f && cos_l > 0.f && !occluded(scene, p_off, wi, dist * (1.f - 1e-4f))) {
-        float light_pdf = pmf / e.area * dist2 / cos_l;
-        float bsdf_pdf = cos_s / kPi;
-        float w = powerHeuristic(light_pdf, bsdf_pdf);
-        direct += e.radiance * (w * cos_s / (kPi * light_pdf));
+    LightSample ls;
+    if (scene.lights().sample(p_off, u_select_rr.x(), u_light, ls)) {
+      float cos_s = n.dot(ls.wi);
+      float tmax =
+          std::isinf(ls.dist) ? std::numeric_limits<float>::infinity() : ls.dist * (1.f - 1e-4f);
+      if (cos_s > 0.f && !occluded(scene, p_off, ls.wi, tmax)) {
+        float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, cos_s / kPi);
+        direct += ls.radiance * (w * cos_s / (kPi * ls.pdf));
       }
-    }
-    for (const PointLight& pl : scene.pointLights()) {
-      Vec3f wl = pl.position.cast<float>() - p_off;
-      float dist2 = wl.squaredNorm(), dist = std::sqrt(dist2);
-      wl /= dist;
-      float cos_s = n.dot(wl);
-      if (cos_s > 0.f && !occluded(scene, p_off, wl, dist * (1.f - 1e-4f)))
-        direct += pl.intensity * (cos_s / (kPi * dist2));
     }
     L += throughput.cwiseProduct(direct);
     // continue the path by cosine sampling

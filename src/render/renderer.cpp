@@ -12,13 +12,14 @@ Renderer::Renderer(const Scene& scene, const std::string& integrator)
 
 Renderer::~Renderer() = default;
 
-void Renderer::render(const CameraIntrinsics& K, const Pose& T_world_camera,
+void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
                       const RenderOptions& options, uint32_t frame_index, Frame& frame) const {
-  inet::renderGroundTruth(*scene_, K, T_world_camera, options.passes, frame);
+  const CameraIntrinsics& K = lens.K;
+  inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes, frame);
   if (has(options.passes, Pass::Rgb)) {
     if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
       frame.rgb = ImageF(K.width, K.height, 3);
-    RenderContext ctx{*scene_, K, T_world_camera, options, frame_index};
+    RenderContext ctx{*scene_, lens, T_world_camera, options, frame_index};
     integrator_->render(ctx, frame.rgb);
     frame.passes |= static_cast<PassMask>(Pass::Rgb);
   } else {
@@ -27,16 +28,16 @@ void Renderer::render(const CameraIntrinsics& K, const Pose& T_world_camera,
   }
 }
 
-void Renderer::renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_camera,
-                                 PassMask passes, Frame& frame) const {
-  inet::renderGroundTruth(*scene_, K, T_world_camera, passes, frame);
+void Renderer::renderGroundTruth(const LensModel& lens, const Pose& T_world_camera, PassMask passes,
+                                 Frame& frame) const {
+  inet::renderGroundTruth(*scene_, lens, T_world_camera, passes, frame);
 }
 
 double Renderer::sceneBuildMs() const {
   return scene_->buildMs();
 }
 size_t Renderer::emissiveTriangleCount() const {
-  return scene_->lights().size();
+  return scene_->lights().triangleCount();
 }
 
 }  // namespace inet

@@ -6,6 +6,7 @@
 #include "render/camera.h"
 #include "render/frame.h"
 #include "render/integrator.h"
+#include "render/lens.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -21,11 +22,20 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   /// Renders the passes in options.passes into `frame` (buffers are reused across calls).
-  void render(const CameraIntrinsics& K, const Pose& T_world_camera, const RenderOptions& options,
+  void render(const LensModel& lens, const Pose& T_world_camera, const RenderOptions& options,
               uint32_t frame_index, Frame& frame) const;
+  /// The same for a plain pinhole camera.
+  void render(const CameraIntrinsics& K, const Pose& T_world_camera, const RenderOptions& options,
+              uint32_t frame_index, Frame& frame) const {
+    render(LensModel::pinhole(K), T_world_camera, options, frame_index, frame);
+  }
   /// Only the ground-truth passes (cheap: one coherent ray per pixel).
-  void renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_camera, PassMask passes,
+  void renderGroundTruth(const LensModel& lens, const Pose& T_world_camera, PassMask passes,
                          Frame& frame) const;
+  void renderGroundTruth(const CameraIntrinsics& K, const Pose& T_world_camera, PassMask passes,
+                         Frame& frame) const {
+    renderGroundTruth(LensModel::pinhole(K), T_world_camera, passes, frame);
+  }
   double sceneBuildMs() const;
   size_t emissiveTriangleCount() const;
 

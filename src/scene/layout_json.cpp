@@ -320,14 +320,55 @@ Object parseObject(const Reader& r, const json& j, const std::string& field,
   return o;
 }
 
-PointLight parsePointLight(const Reader& r, const json& j, const std::string& field) {
-  r.object(j, field, {"name", "position", "intensity"}, {});
-  PointLight l;
+Light parseLight(const Reader& r, const json& j, const std::string& field) {
+  if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
+  if (!j.contains("type")) r.fail(dot(field, "type"), "missing required key (point, spot or sun)");
+  const std::string type = r.string(j["type"], dot(field, "type"));
+  Light l;
+  const Keys common = {"color", "temperature_k", "on"};
+  auto keys = [&](Keys extra) {
+    extra.insert(extra.end(), common.begin(), common.end());
+    return extra;
+  };
+  if (type == "point") {
+    l.type = LightType::Point;
+    r.object(j, field, {"name", "type", "position", "intensity"}, keys({"max_distance"}));
+  } else if (type == "spot") {
+    l.type = LightType::Spot;
+    r.object(j, field, {"name", "type", "position", "direction", "intensity", "cone_deg"},
+             keys({"falloff_deg", "max_distance"}));
+  } else if (type == "sun") {
+    l.type = LightType::Sun;
+    r.object(j, field, {"name", "type", "direction", "intensity"}, keys({"angular_diameter_deg"}));
+  } else {
+    r.fail(dot(field, "type"), "unknown light type '" + type + "' (valid: point, spot, sun)");
+  }
   l.name = r.string(j["name"], dot(field, "name"));
-  l.position = r.vec3(j["position"], dot(field, "position"));
-  l.intensity = r.vec3f(j["intensity"], dot(field, "intensity"));
-  if (l.intensity.minCoeff() < 0.f)
-    r.fail(dot(field, "intensity"), "each channel must be >= 0 (W/sr)");
+  if (j.contains("position")) l.position = r.vec3(j["position"], dot(field, "position"));
+  if (j.contains("direction")) {
+    l.direction = r.vec3(j["direction"], dot(field, "direction"));
+    if (l.direction.norm() < 1e-9) r.fail(dot(field, "direction"), "must not be zero");
+    // normalise once; a direction already unit to 1e-9 is kept bit for bit (round trips)
+    if (std::abs(l.direction.norm() - 1.0) > 1e-9) l.direction.normalize();
+  }
+  l.intensity = r.single(j["intensity"], dot(field, "intensity"));
+  if (l.intensity < 0.f) r.fail(dot(field, "intensity"), "must be >= 0 (W/sr, or W/m^2 for a sun)");
+  if (j.contains("color")) l.color = r.vec3f(j["color"], dot(field, "color"));
+  if (j.contains("temperature_k"))
+    l.temperature_k = r.single(j["temperature_k"], dot(field, "temperature_k"));
+  if (j.contains("cone_deg")) l.cone_deg = r.single(j["cone_deg"], dot(field, "cone_deg"));
+  if (j.contains("falloff_deg"))
+    l.falloff_deg = r.single(j["falloff_deg"], dot(field, "falloff_deg"));
+  if (j.contains("angular_diameter_deg"))
+    l.angular_diameter_deg =
+        r.single(j["angular_diameter_deg"], dot(field, "angular_diameter_deg"));
+  if (j.contains("max_distance"))
+    l.max_distance = r.single(j["max_distance"], dot(field, "max_distance"));
+  if (j.contains("on")) {
+    if (!j["on"].is_boolean())
+      r.fail(dot(field, "on"), "expected true or false, got " + describe(j["on"]));
+    l.on = j["on"].get<bool>();
+  }
   return l;
 }
 
@@ -397,6 +438,25 @@ ojson jsonArray(const V& v) {
   ojson a = ojson::array();
   for (int i = 0; i < v.size(); ++i) a.push_back(jsonNumber(v[i]));
   return a;
+}
+
+ojson lightToJson(const Light& l) {
+  ojson j;
+  j["name"] = l.name;
+  j["type"] = lightTypeName(l.type);
+  if (l.type != LightType::Sun) j["position"] = jsonArray(l.position);
+  if (l.type != LightType::Point) j["direction"] = jsonArray(l.direction);
+  j["intensity"] = jsonNumber(l.intensity);
+  j["color"] = jsonArray(l.color);
+  j["temperature_k"] = jsonNumber(l.temperature_k);
+  if (l.type == LightType::Spot) {
+    j["cone_deg"] = jsonNumber(l.cone_deg);
+    j["falloff_deg"] = jsonNumber(l.falloff_deg);
+  }
+  if (l.type == LightType::Sun) j["angular_diameter_deg"] = jsonNumber(l.angular_diameter_deg);
+  if (l.type != LightType::Sun) j["max_distance"] = jsonNumber(l.max_distance);
+  j["on"] = l.on;
+  return j;
 }
 
 ojson meshToJson(const Mesh& m, const std::string& where, const std::string& field) {
@@ -478,13 +538,8 @@ void checkWritable(const Scene& scene, const std::string& where) {
   }
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].name.empty()) throw InputError(where, at("objects", i) + ".name", "empty");
-  for (size_t i = 0; i < scene.point_lights.size(); ++i) {
-    const PointLight& l = scene.point_lights[i];
-    if (l.name.empty() || !l.position.allFinite() || !l.intensity.allFinite() ||
-        l.intensity.minCoeff() < 0.f)
-      throw InputError(where, at("point_lights", i),
-                       "needs a name, a finite position and a finite intensity >= 0");
-  }
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].name.empty()) throw InputError(where, at("lights", i) + ".name", "empty");
 }
 
 bool isScalar(const ojson& j) {
@@ -526,8 +581,7 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   const Reader r(path);
   const json root = parseText(text, path);
   checkHeader(r, root);
-  r.object(root, "", {"format", "version", "meshes", "materials", "objects"},
-           {"name", "point_lights"});
+  r.object(root, "", {"format", "version", "meshes", "materials", "objects"}, {"name", "lights"});
   Scene scene;
   if (root.contains("name")) scene.name = r.string(root["name"], "name");
   const fs::path base_dir = fs::path(path).parent_path();
@@ -540,10 +594,10 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   const json& objects = r.array(root["objects"], "objects");
   for (size_t i = 0; i < objects.size(); ++i)
     scene.objects.push_back(parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids));
-  if (root.contains("point_lights")) {
-    const json& lights = r.array(root["point_lights"], "point_lights");
+  if (root.contains("lights")) {
+    const json& lights = r.array(root["lights"], "lights");
     for (size_t i = 0; i < lights.size(); ++i)
-      scene.point_lights.push_back(parsePointLight(r, lights[i], at("point_lights", i)));
+      scene.lights.push_back(parseLight(r, lights[i], at("lights", i)));
   }
   scene.validate(path);
   return scene;
@@ -574,14 +628,8 @@ std::string layoutToJson(const Scene& scene) {
   }
   root["objects"] = ojson::array();
   for (const auto& o : scene.objects) root["objects"].push_back(objectToJson(scene, o));
-  root["point_lights"] = ojson::array();
-  for (const auto& l : scene.point_lights) {
-    ojson j;
-    j["name"] = l.name;
-    j["position"] = jsonArray(l.position);
-    j["intensity"] = jsonArray(l.intensity);
-    root["point_lights"].push_back(std::move(j));
-  }
+  root["lights"] = ojson::array();
+  for (const auto& l : scene.lights) root["lights"].push_back(lightToJson(l));
   std::string out;
   writePretty(root, 0, out);
   out += '\n';

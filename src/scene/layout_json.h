@@ -2,7 +2,7 @@
 // layout.json: our versioned scene description (DESIGN.md section 2; schema in docs/layout.md).
 //
 //   {"format": "interiornet-layout", "version": 1, "name": ...,
-//    "meshes": [...], "materials": [...], "objects": [...], "point_lights": [...]}
+//    "meshes": [...], "materials": [...], "objects": [...], "lights": [...]}
 //
 // Reading validates everything before returning (STYLE.md section 4): types, unknown and missing
 // keys, ranges, duplicate ids, references, transforms (Scene::validate) and referenced mesh files.

@@ -5,9 +5,27 @@
 
 #include <fmt/format.h>
 
+#include "core/color.h"
 #include "core/error.h"
 
 namespace inet {
+
+Vec3f Light::rgbIntensity() const {
+  Vec3f c = temperature_k > 0.f ? blackbodyRgb(temperature_k) : color;
+  return c * intensity;
+}
+
+const char* lightTypeName(LightType t) {
+  switch (t) {
+    case LightType::Point:
+      return "point";
+    case LightType::Spot:
+      return "spot";
+    case LightType::Sun:
+      return "sun";
+  }
+  return "?";
+}
 
 int Scene::findMesh(const std::string& id) const {
   for (size_t i = 0; i < meshes.size(); ++i)
@@ -82,6 +100,28 @@ void Scene::validate(const std::string& where) const {
       throw InputError(
           where, field + ".transform",
           "linear part must have a positive determinant (no zero, negative or mirror scale)");
+  }
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const Light& l = lights[i];
+    std::string field = fmt::format("lights[{}] ('{}')", i, l.name);
+    if (!l.position.allFinite()) throw InputError(where, field + ".position", "must be finite");
+    if (!(l.intensity >= 0.f && std::isfinite(l.intensity)))
+      throw InputError(where, field + ".intensity", "must be finite and >= 0");
+    if (!l.color.allFinite() || l.color.minCoeff() < 0.f)
+      throw InputError(where, field + ".color", "each channel must be finite and >= 0");
+    if (l.temperature_k != 0.f && !(l.temperature_k >= 1000.f && l.temperature_k <= 40000.f))
+      throw InputError(where, field + ".temperature_k",
+                       "must be 0 (use color) or in 1000..40000 K");
+    if (l.type != LightType::Point && std::abs(l.direction.norm() - 1.0) > 1e-6)
+      throw InputError(where, field + ".direction", "must be a unit vector");
+    if (l.type == LightType::Spot && !(l.cone_deg > 0.f && l.cone_deg < 90.f &&
+                                       l.falloff_deg >= 0.f && l.falloff_deg <= l.cone_deg))
+      throw InputError(where, field + ".cone_deg",
+                       "need 0 < cone_deg < 90 and 0 <= falloff_deg <= cone_deg");
+    if (l.type == LightType::Sun &&
+        !(l.angular_diameter_deg > 0.f && l.angular_diameter_deg < 30.f))
+      throw InputError(where, field + ".angular_diameter_deg", "must be in (0, 30) degrees");
+    if (!(l.max_distance >= 0.f)) throw InputError(where, field + ".max_distance", "must be >= 0");
   }
   for (const auto& m : materials) {
     if (!m.albedo.allFinite() || m.albedo.minCoeff() < 0 || m.albedo.maxCoeff() > 1)

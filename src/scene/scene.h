@@ -63,19 +63,39 @@ struct Object {
   int instance = 0;  ///< instance id (1..65535), shared by the parts of one object
 };
 
-/// A point light (isotropic): radiant intensity in W/sr per RGB channel.
-struct PointLight {
+/// Analytic lights (area lights are emissive materials on geometry).
+enum class LightType { Point, Spot, Sun };
+
+/// A light that is not geometry: isotropic point, spot (cone with a smooth edge), or sun (a
+/// distant disk). Radiometric units: point and spot `intensity` is radiant intensity in W/sr
+/// along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing it.
+struct Light {
   std::string name;
-  Vec3 position = Vec3::Zero();
-  Vec3f intensity{0.f, 0.f, 0.f};
+  LightType type = LightType::Point;
+  Vec3 position = Vec3::Zero();        ///< point, spot (metres)
+  Vec3 direction = -Vec3::UnitZ();     ///< spot, sun: unit direction the light travels
+  Vec3f color{1.f, 1.f, 1.f};          ///< linear RGB tint, used when temperature_k == 0
+  float temperature_k = 0.f;           ///< > 0: blackbody colour at this temperature (luminance 1)
+  float intensity = 1.f;               ///< W/sr (point, spot) or W/m^2 (sun), times the colour
+  float cone_deg = 30.f;               ///< spot: half-angle of the lit cone
+  float falloff_deg = 5.f;             ///< spot: width of the smooth edge inside the cone
+  float angular_diameter_deg = 0.53f;  ///< sun: apparent diameter (the real sun: 0.53 deg)
+  float max_distance = 0.f;            ///< point, spot: no light beyond this range (m); 0 = none
+  bool on = true;
+
+  /// Colour times intensity: RGB radiant intensity (point, spot) or irradiance (sun).
+  Vec3f rgbIntensity() const;
 };
+
+/// Names of light types as written in layout files ("point", "spot", "sun").
+const char* lightTypeName(LightType t);
 
 struct Scene {
   std::string name = "scene";
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;
-  std::vector<PointLight> point_lights;
+  std::vector<Light> lights;
 
   int findMesh(const std::string& id) const;
   int findMaterial(const std::string& id) const;

@@ -61,8 +61,13 @@ TEST(LayoutJson, LoadsTheFixture) {
   EXPECT_EQ(s.objects[2].instance, 2);
   EXPECT_EQ(s.materials[2].emission, Vec3f(12.f, 11.5f, 10.5f));
   EXPECT_EQ(s.materials[0].emission, Vec3f::Zero()) << "emission defaults to 0";
-  ASSERT_EQ(s.point_lights.size(), 1u);
-  EXPECT_EQ(s.point_lights[0].position, Vec3(2.5, 2.0, 2.4));
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.lights[0].position, Vec3(2.5, 2.0, 2.4));
+  EXPECT_EQ(s.lights[0].type, LightType::Point);
+  EXPECT_EQ(s.lights[1].type, LightType::Spot);
+  EXPECT_FLOAT_EQ(s.lights[1].temperature_k, 2700.f);
+  EXPECT_EQ(s.lights[2].type, LightType::Sun);
+  EXPECT_FALSE(s.lights[2].on);
 }
 
 TEST(LayoutJson, LoadSaveLoadSaveIsStable) {
@@ -143,8 +148,12 @@ TEST(LayoutJson, EveryDoubleAndFloatRoundTripsExactly) {
     o.instance = static_cast<int>(i) + 1;
     s.objects.push_back(o);
   }
-  s.point_lights.push_back(
-      {"p", Vec3(awkward[0], awkward[3], awkward[4]), Vec3f(0.3f, 0.f, 1e30f)});
+  Light l;
+  l.name = "p";
+  l.position = Vec3(awkward[0], awkward[3], awkward[4]);
+  l.color = Vec3f(0.3f, 0.f, 1e30f);
+  l.intensity = 0.1f;
+  s.lights.push_back(l);
   const std::string text = layoutToJson(s);
   Scene back = parseLayout(text, "memory.json");
   expectScenesEqual(s, back);
@@ -182,7 +191,7 @@ TEST(LayoutJson, RelativeFileMeshResolvesAgainstTheLayoutFolder) {
   EXPECT_EQ(s.meshes[0].source.file, "../../meshes/two_parts.obj");
   EXPECT_EQ(s.meshes[0].source.mesh_name, "glow_panel");
   EXPECT_EQ(s.name, "scene") << "name is optional";
-  EXPECT_TRUE(s.point_lights.empty()) << "point_lights is optional";
+  EXPECT_TRUE(s.lights.empty()) << "lights is optional";
   // written back with the path as written, so the copy beside it loads too
   const std::string copy = (dir.path() / "rooms" / "a" / "copy.json").string();
   saveLayout(s, copy);
@@ -228,7 +237,7 @@ json baseLayout() {
     "materials": [{"id": "white", "type": "lambertian", "albedo": [0.5, 0.5, 0.5]}],
     "objects": [{"name": "crate", "mesh": "box", "material": "white", "nyu40": 29,
                  "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "instance": 1}],
-    "point_lights": [{"name": "bulb", "position": [0, 0, 2], "intensity": [1, 1, 1]}]})");
+    "lights": [{"name": "bulb", "type": "point", "position": [0, 0, 2], "intensity": 1}]})");
 }
 
 template <class F>
@@ -379,10 +388,21 @@ std::vector<BadLayout> objectCases() {
        "objects[0].instance", "expected an integer"},
       {"empty_object_name", edited([](json& j) { j["objects"][0]["name"] = ""; }),
        "objects[0].name", "must not be empty"},
-      {"negative_light", edited([](json& j) { j["point_lights"][0]["intensity"][2] = -1; }),
-       "point_lights[0].intensity", ">= 0"},
-      {"light_unknown_key", edited([](json& j) { j["point_lights"][0]["radius"] = 0.1; }),
-       "point_lights[0].radius", "valid keys here: name, position, intensity"},
+      {"negative_light", edited([](json& j) { j["lights"][0]["intensity"] = -1; }),
+       "lights[0].intensity", ">= 0"},
+      {"light_unknown_key", edited([](json& j) { j["lights"][0]["radius"] = 0.1; }),
+       "lights[0].radius", "valid keys here: name, type, position, intensity"},
+      {"light_unknown_type", edited([](json& j) { j["lights"][0]["type"] = "laser"; }),
+       "lights[0].type", "valid: point, spot, sun"},
+      {"light_cold_temperature", edited([](json& j) { j["lights"][0]["temperature_k"] = 10; }),
+       "temperature_k", "1000..40000"},
+      {"spot_without_cone", edited([](json& j) {
+         j["lights"][0]["type"] = "spot";
+         j["lights"][0]["direction"] = json::array({0, 0, -1});
+       }),
+       "lights[0].cone_deg", "missing required key"},
+      {"light_on_not_bool", edited([](json& j) { j["lights"][0]["on"] = 1; }), "lights[0].on",
+       "expected true or false"},
       {"objects_not_array", edited([](json& j) { j["objects"] = json::object(); }), "objects",
        "expected an array"},
   };

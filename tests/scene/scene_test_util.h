@@ -110,13 +110,24 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.nyu40, y.nyu40);
     EXPECT_EQ(x.instance, y.instance);
   }
-  ASSERT_EQ(a.point_lights.size(), b.point_lights.size());
-  for (size_t i = 0; i < a.point_lights.size(); ++i) {
-    SCOPED_TRACE("point_lights[" + std::to_string(i) + "]");
-    EXPECT_EQ(a.point_lights[i].name, b.point_lights[i].name);
-    for (int k = 0; k < 3; ++k)
-      EXPECT_TRUE(sameBits(a.point_lights[i].position[k], b.point_lights[i].position[k]));
-    EXPECT_EQ(a.point_lights[i].intensity, b.point_lights[i].intensity);
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    SCOPED_TRACE("lights[" + std::to_string(i) + "]");
+    const Light &x = a.lights[i], &y = b.lights[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.type, y.type);
+    for (int k = 0; k < 3; ++k) {
+      if (x.type != LightType::Sun) {
+        EXPECT_TRUE(sameBits(x.position[k], y.position[k]));
+      }
+      if (x.type != LightType::Point) {
+        EXPECT_TRUE(sameBits(x.direction[k], y.direction[k]));
+      }
+    }
+    EXPECT_EQ(x.color, y.color);
+    EXPECT_EQ(x.intensity, y.intensity);
+    EXPECT_EQ(x.temperature_k, y.temperature_k);
+    EXPECT_EQ(x.on, y.on);
   }
 }
 

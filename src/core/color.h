@@ -1,0 +1,32 @@
+#pragma once
+// Colour helpers shared by the renderer and the writers.
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "core/image.h"
+
+namespace inet {
+
+/// sRGB opto-electronic transfer function (IEC 61966-2-1) of a linear value in [0, 1].
+double srgbOetf(double linear);
+
+/// One linear value -> 8-bit sRGB code, exactly floor(255 * srgbOetf(clamp(v, 0, 1)) + 0.5) for
+/// every float v (NaN and negatives give 0, +inf gives 255). Implemented with a 4096-bucket table
+/// plus the 255 exact float thresholds between codes, so it is fast and bit-exact.
+uint8_t linearToSrgb8(float linear);
+
+/// Linear RGB (or any channel count) -> 8-bit sRGB, per channel as linearToSrgb8. Used for the
+/// colour image and for albedo.
+ImageU8 encodeSrgb8(const ImageF& linear);
+
+/// Linear sRGB (Rec. 709 primaries, D65) colour of a blackbody at `kelvin`, scaled to luminance
+/// Y = 1. Planck's law integrated against the CIE 1931 2-degree colour matching functions (the
+/// analytic multi-lobe fit of Wyman, Sloan and Shirley, JCGT 2013) over 380-780 nm in 1 nm steps;
+/// negative components (very low temperatures lie outside the sRGB gamut) are clipped to 0.
+/// Valid for 1000 K .. 40000 K.
+Eigen::Vector3f blackbodyRgb(double kelvin);
+
+/// CIE 1931 colour matching functions at wavelength `nm` (Wyman et al. 2013 fit): (x, y, z).
+Eigen::Vector3d cieXyzMatching(double nm);
+
+}  // namespace inet

@@ -1,0 +1,68 @@
+#pragma once
+// Light sampling for next-event estimation: every light of the scene in one list (emissive
+// triangles, point, spot and sun lights), picked with probability proportional to an estimate of
+// its power, so that 50+ lights cost one sample each, not one shadow ray per light.
+//
+// Conventions: `sample` returns the radiance arriving at p from the chosen point and the pdf of
+// choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
+// their `pdf` is the pick probability alone and `delta` is set, so the integrator skips MIS.
+#include <Eigen/Core>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace inet {
+
+/// An emissive triangle in world space (one-sided: emits along `normal`).
+struct EmissiveTriangle {
+  Vec3f p0, e1, e2;  ///< vertex and edges
+  Vec3f normal;      ///< unit geometric normal
+  float area = 0.f;
+  Vec3f radiance;
+};
+
+struct LightSample {
+  Vec3f wi;          ///< unit direction from p toward the light
+  float dist = 0.f;  ///< distance to the sampled point (infinity for the sun)
+  Vec3f radiance;    ///< incident radiance (area, sun) or intensity / dist^2 (point, spot)
+  float pdf = 0.f;   ///< pick probability x solid-angle pdf (pick probability alone if delta)
+  bool delta = false;
+};
+
+class SceneLights {
+ public:
+  /// Collects the lights that are on. scene_radius bounds the sun's power estimate.
+  SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles, float scene_radius);
+
+  bool empty() const { return cdf_.empty(); }
+  size_t triangleCount() const { return triangles_.size(); }
+  const EmissiveTriangle& triangle(size_t i) const { return triangles_[i]; }
+
+  /// Samples one light for a receiver at p; u_pick picks the light, u the point on it.
+  /// Returns false when the sample carries nothing (back side, outside a spot cone or range).
+  bool sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u, LightSample& out) const;
+  /// pdf (pick x solid angle) with which `sample` would choose the point of triangle i seen at
+  /// distance dist with cosine cos_light between its normal and the direction to the receiver.
+  float trianglePdf(size_t i, float dist, float cos_light) const;
+  /// Radiance of the sun(s) seen along unit direction d (0 if none covers d), and the pdf with
+  /// which `sample` would have chosen that direction.
+  Vec3f sunRadiance(const Vec3f& d, float& pdf) const;
+
+ private:
+  struct Analytic {
+    LightType type;
+    Vec3f position, direction, rgb;             // rgb: intensity (W/sr) or irradiance (W/m^2)
+    float cos_outer = -1.f, cos_inner = -1.f;   // spot
+    float cos_max = 1.f, radiance_scale = 0.f;  // sun: cone of the disk, L = rgb * scale
+    float max_distance = 0.f;
+  };
+  bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
+                      LightSample& out) const;
+  float pick(float u, size_t& index) const;
+
+  std::vector<EmissiveTriangle> triangles_;
+  std::vector<Analytic> analytic_;  // index in the CDF: triangleCount() + i
+  std::vector<float> cdf_, pmf_;
+};
+
+}  // namespace inet
