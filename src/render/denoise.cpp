@@ -1,0 +1,443 @@
+#include "render/denoise.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+
+// Lets the compiler vectorise the per-tap loops without run-time alias checks: every output
+// array written there is distinct from every input array.
+#if defined(__clang__)
+#define INET_IVDEP _Pragma("clang loop vectorize(assume_safety)")
+#elif defined(__GNUC__)
+#define INET_IVDEP _Pragma("GCC ivdep")
+#else
+#define INET_IVDEP
+#endif
+
+// The tap loop is the hot spot (about 3/4 of the time): also build it for AVX2, picked at run
+// time. AVX2 without FMA performs the same IEEE operations in the same order as the SSE2
+// baseline, so the bytes do not depend on which version runs.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define INET_TAP_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define INET_TAP_CLONES
+#endif
+
+namespace inet {
+namespace {
+
+constexpr float kLumR = 0.2126f, kLumG = 0.7152f, kLumB = 0.0722f;  // Rec. 709 luminance
+constexpr float kB3[5] = {1.f / 16, 1.f / 4, 3.f / 8, 1.f / 4, 1.f / 16};
+constexpr int kRowGrain = 4;
+constexpr int kTile = 16;  // tile size of the robust noise estimate
+
+/// body(y) for every row, in parallel. Rows are independent, so the order does not matter.
+template <typename Body>
+void forEachRow(int height, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, kRowGrain), [&](const auto& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) body(y);
+  });
+}
+
+/// e^-s for s >= 0, with ~3e-6 relative error, and exactly 0 for s > 20 (and for +inf, NaN):
+/// weights below e^-20 change no result but would make w^2 and products underflow into slow
+/// denormals. 2^t = 2^round(t) 2^f, f in [-0.5, 0.5], with the degree-5 Taylor polynomial of
+/// 2^f = e^(f ln 2). Deterministic (no libm) and branch-free so the tap loops vectorise: the
+/// cut-off compares the bit patterns as integers (ordered like the floats for s >= 0), because a
+/// float compare may trap and GCC then refuses to if-convert it.
+inline float expNegative(float s) {
+  constexpr int32_t kCutBits = std::bit_cast<int32_t>(20.f);
+  constexpr float kRound = 12582912.f;  // 1.5 * 2^23: adding it rounds to an integer
+  int32_t bits = std::bit_cast<int32_t>(s);
+  int32_t keep = -static_cast<int32_t>(bits <= kCutBits);  // all ones or all zeros
+  bits = (bits & keep) | (kCutBits & ~keep);
+  float t = std::bit_cast<float>(bits) * -1.44269504f;  // log2(e^-s), in [-28.9, 0]
+  float r = t + kRound;
+  int32_t i = std::bit_cast<int32_t>(r) - std::bit_cast<int32_t>(kRound);
+  float f = t - (r - kRound);
+  float p = 1.f + f * (0.69314718f +
+                       f * (0.24022651f + f * (0.05550411f + f * (0.00961813f + f * 0.00133336f))));
+  return std::bit_cast<float>((std::bit_cast<int32_t>(p) + i * (1 << 23)) & keep);
+}
+
+/// Per-pixel guide data, constant over the iterations. Structure of arrays, row-major.
+struct Guide {
+  int width = 0, height = 0;
+  std::vector<float> nx, ny, nz;  // camera-frame normal
+  std::vector<float> iz, gx, gy;  // inverse z-depth and its screen gradient (per pixel)
+  std::vector<float> z_tol_inv;   // z / sigma_depth: 1 / tolerance of the inverse depth
+  std::vector<float> ar, ag, ab;  // albedo
+  std::vector<float> valid;       // 1 = surface with finite colour, 0 = pass through
+
+  size_t size() const { return static_cast<size_t>(width) * height; }
+};
+
+/// The filtered signal: demodulated colour, its luminance and the variance of that luminance.
+/// Invalid pixels hold 0 so that a zero weight times their value stays 0.
+struct Signal {
+  std::vector<float> r, g, b, lum, var;
+  explicit Signal(size_t n) : r(n), g(n), b(n), lum(n), var(n) {}
+};
+
+bool hasSurface(const ImageF& normal, const ImageF& depth, int x, int y) {
+  float z = depth.at(x, y);
+  const float* n = normal.pixel(x, y);
+  bool normal_ok = std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) &&
+                   (n[0] != 0.f || n[1] != 0.f || n[2] != 0.f);
+  return z > 0.f && std::isfinite(z) && normal_ok;
+}
+
+/// One-sided difference with the smaller magnitude, so a gradient next to an occlusion edge is
+/// taken from the pixel's own surface.
+float robustGradient(const Guide& g, size_t i, size_t stride, bool has_lo, bool has_hi) {
+  bool lo = has_lo && g.valid[i - stride] > 0.f;
+  bool hi = has_hi && g.valid[i + stride] > 0.f;
+  float d_lo = lo ? g.iz[i] - g.iz[i - stride] : 0.f;
+  float d_hi = hi ? g.iz[i + stride] - g.iz[i] : 0.f;
+  if (lo && hi) return std::fabs(d_lo) <= std::fabs(d_hi) ? d_lo : d_hi;
+  return lo ? d_lo : d_hi;
+}
+
+Guide buildGuide(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
+                 const DenoiseOptions& opt) {
+  Guide g;
+  g.width = rgb.width;
+  g.height = rgb.height;
+  size_t n = g.size();
+  for (auto* v :
+       {&g.nx, &g.ny, &g.nz, &g.iz, &g.gx, &g.gy, &g.z_tol_inv, &g.ar, &g.ag, &g.ab, &g.valid})
+    v->assign(n, 0.f);
+  forEachRow(g.height, [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      size_t i = static_cast<size_t>(y) * g.width + x;
+      const float* c = rgb.pixel(x, y);
+      const float* a = albedo.pixel(x, y);
+      bool finite = std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) &&
+                    std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+      if (!finite || !hasSurface(normal, depth, x, y)) continue;
+      const float* nn = normal.pixel(x, y);
+      g.valid[i] = 1.f;
+      g.nx[i] = nn[0], g.ny[i] = nn[1], g.nz[i] = nn[2];
+      g.ar[i] = a[0], g.ag[i] = a[1], g.ab[i] = a[2];
+      g.iz[i] = 1.f / depth.at(x, y);
+      g.z_tol_inv[i] = depth.at(x, y) / opt.sigma_depth;
+    }
+  });
+  const size_t stride = static_cast<size_t>(g.width);
+  forEachRow(g.height, [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      size_t i = static_cast<size_t>(y) * g.width + x;
+      if (g.valid[i] == 0.f) continue;
+      g.gx[i] = robustGradient(g, i, 1, x > 0, x + 1 < g.width);
+      g.gy[i] = robustGradient(g, i, stride, y > 0, y + 1 < g.height);
+    }
+  });
+  return g;
+}
+
+float luminance(float r, float g, float b) {
+  return kLumR * r + kLumG * g + kLumB * b;
+}
+
+/// Pixel i of the irradiance E = rgb / max(albedo, eps) and, if given, of the variance of E's
+/// luminance.
+void demodulatePixel(const ImageF& rgb, const ImageF* variance, const Guide& g, float eps, size_t i,
+                     Signal& s) {
+  const float* c = rgb.data.data() + 3 * i;
+  float inv[3] = {1.f / std::max(g.ar[i], eps), 1.f / std::max(g.ag[i], eps),
+                  1.f / std::max(g.ab[i], eps)};
+  s.r[i] = c[0] * inv[0], s.g[i] = c[1] * inv[1], s.b[i] = c[2] * inv[2];
+  s.lum[i] = luminance(s.r[i], s.g[i], s.b[i]);
+  if (!variance) return;
+  const float* v = variance->data.data() + static_cast<size_t>(variance->channels) * i;
+  float sd[3];
+  for (int k = 0; k < 3; ++k) {
+    float vk = v[variance->channels == 3 ? k : 0];
+    sd[k] = std::isfinite(vk) && vk > 0.f ? std::sqrt(vk) * inv[k] : 0.f;
+  }
+  float sd_lum = luminance(sd[0], sd[1], sd[2]);  // channels assumed fully correlated
+  s.var[i] = sd_lum * sd_lum;
+}
+
+Signal demodulate(const ImageF& rgb, const ImageF* variance, const Guide& g, float eps) {
+  Signal s(g.size());
+  forEachRow(g.height, [&](int y) {
+    for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width; ++i)
+      if (g.valid[i] != 0.f) demodulatePixel(rgb, variance, g, eps, i, s);
+  });
+  return s;
+}
+
+/// Residual of the luminance against the mean of its 4 neighbours, if all 4 lie on the same
+/// surface (geometric weight > 1/2); NaN otherwise.
+float residual(const Guide& g, const Signal& s, int x, int y, const DenoiseOptions& opt) {
+  if (x == 0 || y == 0 || x + 1 == g.width || y + 1 == g.height) return NAN;
+  size_t i = static_cast<size_t>(y) * g.width + x;
+  if (g.valid[i] == 0.f) return NAN;
+  const long offs[4] = {-1, 1, -static_cast<long>(g.width), static_cast<long>(g.width)};
+  const float dxs[4] = {-1, 1, 0, 0}, dys[4] = {0, 0, -1, 1};
+  float sum = 0.f;
+  for (int k = 0; k < 4; ++k) {
+    size_t q = static_cast<size_t>(static_cast<long>(i) + offs[k]);
+    if (g.valid[q] == 0.f) return NAN;
+    float dot = g.nx[i] * g.nx[q] + g.ny[i] * g.ny[q] + g.nz[i] * g.nz[q];
+    float pred = g.iz[i] + g.gx[i] * dxs[k] + g.gy[i] * dys[k];
+    float da0 = g.ar[i] - g.ar[q], da1 = g.ag[i] - g.ag[q], da2 = g.ab[i] - g.ab[q];
+    float e = opt.sigma_normal * (1.f - dot) + std::fabs(g.iz[q] - pred) * g.z_tol_inv[i] +
+              (da0 * da0 + da1 * da1 + da2 * da2) / (2.f * opt.sigma_albedo * opt.sigma_albedo);
+    if (!(e < 0.6931472f)) return NAN;
+    sum += s.lum[q];
+  }
+  return s.lum[i] - 0.25f * sum;
+}
+
+/// Robust noise level when the caller has no variance: per kTile x kTile tile, sigma = 1.4826
+/// median|residual| / sqrt(1 + 1/4) (the residual of iid noise against a 4-neighbour mean has
+/// variance 5/4 sigma^2); tiles with too few samples take the median over tiles; the variance is
+/// interpolated bilinearly between tile centres.
+void estimateVariance(const Guide& g, Signal& s, const DenoiseOptions& opt) {
+  const int tw = (g.width + kTile - 1) / kTile, th = (g.height + kTile - 1) / kTile;
+  std::vector<float> sigma(static_cast<size_t>(tw) * th, NAN);
+  tbb::parallel_for(0, th, [&](int ty) {
+    std::vector<float> abs_res;
+    for (int tx = 0; tx < tw; ++tx) {
+      abs_res.clear();
+      for (int y = ty * kTile; y < std::min(g.height, (ty + 1) * kTile); ++y)
+        for (int x = tx * kTile; x < std::min(g.width, (tx + 1) * kTile); ++x) {
+          float r = residual(g, s, x, y, opt);
+          if (!std::isnan(r)) abs_res.push_back(std::fabs(r));
+        }
+      if (abs_res.size() < kTile * kTile / 8) continue;
+      auto mid = abs_res.begin() + abs_res.size() / 2;
+      std::nth_element(abs_res.begin(), mid, abs_res.end());
+      sigma[static_cast<size_t>(ty) * tw + tx] = 1.4826f * *mid / std::sqrt(1.25f);
+    }
+  });
+  std::vector<float> known;
+  for (float v : sigma)
+    if (!std::isnan(v)) known.push_back(v);
+  float fallback = 0.f;
+  if (!known.empty()) {
+    std::nth_element(known.begin(), known.begin() + known.size() / 2, known.end());
+    fallback = known[known.size() / 2];
+  }
+  for (float& v : sigma)
+    if (std::isnan(v)) v = fallback;
+  auto tileVar = [&](int tx, int ty) {
+    float v =
+        sigma[static_cast<size_t>(std::clamp(ty, 0, th - 1)) * tw + std::clamp(tx, 0, tw - 1)];
+    return v * v;
+  };
+  for (int y = 0; y < g.height; ++y) {
+    float fy = (y + 0.5f) / kTile - 0.5f;
+    int ty = static_cast<int>(std::floor(fy));
+    float wy = fy - ty;
+    for (int x = 0; x < g.width; ++x) {
+      float fx = (x + 0.5f) / kTile - 0.5f;
+      int tx = static_cast<int>(std::floor(fx));
+      float wx = fx - tx;
+      size_t i = static_cast<size_t>(y) * g.width + x;
+      s.var[i] = g.valid[i] == 0.f
+                     ? 0.f
+                     : (1 - wy) * ((1 - wx) * tileVar(tx, ty) + wx * tileVar(tx + 1, ty)) +
+                           wy * ((1 - wx) * tileVar(tx, ty + 1) + wx * tileVar(tx + 1, ty + 1));
+    }
+  }
+}
+
+/// 1 / (sigma_color * sqrt(3x3 Gaussian of the variance over valid pixels) + 1e-8) per pixel.
+std::vector<float> colourScale(const Guide& g, const Signal& s, float sigma_color) {
+  std::vector<float> out(g.size(), 0.f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.height, kRowGrain), [&](const auto& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < g.width; ++x) {
+        float sum = 0.f, wsum = 0.f;
+        for (int dy = -1; dy <= 1; ++dy) {
+          if (y + dy < 0 || y + dy >= g.height) continue;
+          for (int dx = -1; dx <= 1; ++dx) {
+            if (x + dx < 0 || x + dx >= g.width) continue;
+            size_t q = static_cast<size_t>(y + dy) * g.width + (x + dx);
+            float k = (dx == 0 ? 2.f : 1.f) * (dy == 0 ? 2.f : 1.f) * g.valid[q];
+            sum += k * s.var[q];
+            wsum += k;
+          }
+        }
+        float var = wsum > 0.f ? sum / wsum : 0.f;
+        out[static_cast<size_t>(y) * g.width + x] = 1.f / (sigma_color * std::sqrt(var) + 1e-8f);
+      }
+    }
+  });
+  return out;
+}
+
+/// Running sums of one output row.
+struct RowSums {
+  std::vector<float> r, g, b, w, v;
+  explicit RowSums(int width) : r(width), g(width), b(width), w(width), v(width) {}
+  void clear() {
+    for (auto* a : {&r, &g, &b, &w, &v}) std::fill(a->begin(), a->end(), 0.f);
+  }
+};
+
+struct TapContext {
+  const Guide& g;
+  const Signal& in;
+  const std::vector<float>& colour_scale;
+  float sigma_normal, inv_two_sa2;
+};
+
+/// Adds tap (dx, dy) with spatial weight hw to the sums of row y, over the columns whose
+/// neighbour is inside the image. Straight-line code over arrays so it vectorises.
+INET_TAP_CLONES void addTap(const TapContext& c, int y, int dx, int dy, float hw, RowSums& sums) {
+  const Guide& g = c.g;
+  const int x0 = std::max(0, -dx), x1 = std::min(g.width, g.width - dx);
+  const size_t p0 = static_cast<size_t>(y) * g.width + x0;
+  const size_t q0 = static_cast<size_t>(y + dy) * g.width + (x0 + dx);
+  const float *pnx = &g.nx[p0], *pny = &g.ny[p0], *pnz = &g.nz[p0], *piz = &g.iz[p0];
+  const float *pgx = &g.gx[p0], *pgy = &g.gy[p0], *pzt = &g.z_tol_inv[p0];
+  const float *par = &g.ar[p0], *pag = &g.ag[p0], *pab = &g.ab[p0];
+  const float *plum = &c.in.lum[p0], *pcs = &c.colour_scale[p0];
+  const float *qnx = &g.nx[q0], *qny = &g.ny[q0], *qnz = &g.nz[q0], *qiz = &g.iz[q0];
+  const float *qar = &g.ar[q0], *qag = &g.ag[q0], *qab = &g.ab[q0], *qok = &g.valid[q0];
+  const float *qlum = &c.in.lum[q0], *qr = &c.in.r[q0], *qg = &c.in.g[q0], *qb = &c.in.b[q0];
+  const float* qvar = &c.in.var[q0];
+  float *sr = &sums.r[x0], *sg = &sums.g[x0], *sb = &sums.b[x0], *sw = &sums.w[x0];
+  float* sv = &sums.v[x0];
+  const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+  const float sn = c.sigma_normal, sa = c.inv_two_sa2;
+  const int n = x1 - x0;
+  INET_IVDEP
+  for (int i = 0; i < n; ++i) {
+    float en = sn * std::fabs(1.f - (pnx[i] * qnx[i] + pny[i] * qny[i] + pnz[i] * qnz[i]));
+    float ez = std::fabs(qiz[i] - (piz[i] + pgx[i] * fdx + pgy[i] * fdy)) * pzt[i];
+    float da0 = par[i] - qar[i], da1 = pag[i] - qag[i], da2 = pab[i] - qab[i];
+    float ea = (da0 * da0 + da1 * da1 + da2 * da2) * sa;
+    float el = std::fabs(plum[i] - qlum[i]) * pcs[i];
+    float w = hw * qok[i] * expNegative(en + ez + ea + el);
+    sr[i] += w * qr[i];
+    sg[i] += w * qg[i];
+    sb[i] += w * qb[i];
+    sw[i] += w;
+    sv[i] += w * w * qvar[i];
+  }
+}
+
+/// One à-trous level with tap spacing `step`: in -> out.
+void atrousLevel(const Guide& g, const Signal& in, Signal& out, int step,
+                 const DenoiseOptions& opt) {
+  std::vector<float> scale = colourScale(g, in, opt.sigma_color);
+  TapContext ctx{g, in, scale, opt.sigma_normal, 1.f / (2.f * opt.sigma_albedo * opt.sigma_albedo)};
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.height, kRowGrain), [&](const auto& rows) {
+    RowSums sums(g.width);
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      sums.clear();
+      for (int ky = -2; ky <= 2; ++ky) {
+        int dy = ky * step;
+        if (y + dy < 0 || y + dy >= g.height) continue;
+        for (int kx = -2; kx <= 2; ++kx) {
+          int dx = kx * step;
+          if (dx >= g.width || -dx >= g.width) continue;
+          addTap(ctx, y, dx, dy, kB3[ky + 2] * kB3[kx + 2], sums);
+        }
+      }
+      for (int x = 0; x < g.width; ++x) {
+        size_t i = static_cast<size_t>(y) * g.width + x;
+        if (g.valid[i] == 0.f) continue;  // out was zero-initialised like in
+        float inv_w = 1.f / sums.w[x];    // >= (3/8)^2: the centre tap always counts
+        out.r[i] = sums.r[x] * inv_w;
+        out.g[i] = sums.g[x] * inv_w;
+        out.b[i] = sums.b[x] * inv_w;
+        out.lum[i] = luminance(out.r[i], out.g[i], out.b[i]);
+        out.var[i] = sums.v[x] * inv_w * inv_w;
+      }
+    }
+  });
+}
+
+void checkPass(const ImageF& img, const ImageF& rgb, int channels, const char* name) {
+  INET_CHECK_MSG(img.width == rgb.width && img.height == rgb.height && img.channels == channels,
+                 std::string("denoise: ") + name + " pass has the wrong size or channel count");
+}
+
+}  // namespace
+
+std::string DenoiseOptions::describe() const {
+  std::ostringstream s;
+  s << "iterations=" << iterations << " sigma_normal=" << sigma_normal
+    << " sigma_depth=" << sigma_depth << " sigma_albedo=" << sigma_albedo
+    << " sigma_color=" << sigma_color << " albedo_epsilon=" << albedo_epsilon;
+  return s.str();
+}
+
+void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
+  if (o.iterations < 1 || o.iterations > 10)
+    throw InputError(where, "denoise.iterations",
+                     "must be in 1..10, got " + std::to_string(o.iterations));
+  const std::pair<const char*, float> sigmas[] = {{"denoise.sigma_normal", o.sigma_normal},
+                                                  {"denoise.sigma_depth", o.sigma_depth},
+                                                  {"denoise.sigma_albedo", o.sigma_albedo},
+                                                  {"denoise.sigma_color", o.sigma_color}};
+  for (const auto& [name, v] : sigmas)
+    if (!(std::isfinite(v) && v > 0.f))
+      throw InputError(where, name, "must be finite and > 0, got " + std::to_string(v));
+  if (!(o.albedo_epsilon > 0.f && o.albedo_epsilon <= 1.f))
+    throw InputError(where, "denoise.albedo_epsilon",
+                     "must be in (0, 1], got " + std::to_string(o.albedo_epsilon));
+}
+
+ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
+               const ImageF* variance, const DenoiseOptions& opt) {
+  INET_CHECK_MSG(rgb.channels == 3, "denoise: rgb must have 3 channels");
+  checkPass(albedo, rgb, 3, "albedo");
+  checkPass(normal, rgb, 3, "normal");
+  checkPass(depth, rgb, 1, "depth");
+  if (variance)
+    INET_CHECK_MSG(variance->width == rgb.width && variance->height == rgb.height &&
+                       (variance->channels == 1 || variance->channels == 3),
+                   "denoise: variance must be rgb-sized with 1 or 3 channels");
+  validateDenoiseOptions(opt, "");
+  if (rgb.empty()) return rgb;
+
+  const Guide g = buildGuide(rgb, albedo, normal, depth, opt);
+  Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
+  if (!variance) estimateVariance(g, a, opt);
+  Signal b(g.size());
+  for (int it = 0; it < opt.iterations; ++it) {
+    atrousLevel(g, a, b, 1 << it, opt);
+    std::swap(a, b);
+  }
+  ImageF out = rgb;
+  const float eps = opt.albedo_epsilon;
+  forEachRow(g.height, [&](int y) {
+    for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width;
+         ++i) {
+      if (g.valid[i] == 0.f) continue;
+      out.data[3 * i] = a.r[i] * std::max(g.ar[i], eps);
+      out.data[3 * i + 1] = a.g[i] * std::max(g.ag[i], eps);
+      out.data[3 * i + 2] = a.b[i] * std::max(g.ab[i], eps);
+    }
+  });
+  return out;
+}
+
+ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b) {
+  INET_CHECK_MSG(half_a.width == half_b.width && half_a.height == half_b.height &&
+                     half_a.channels == half_b.channels,
+                 "varianceFromHalfBuffers: buffers differ in size");
+  ImageF out(half_a.width, half_a.height, half_a.channels);
+  for (size_t i = 0; i < out.data.size(); ++i) {
+    float d = 0.5f * (half_a.data[i] - half_b.data[i]);
+    out.data[i] = d * d;
+  }
+  return out;
+}
+
+}  // namespace inet

@@ -1,0 +1,74 @@
+#pragma once
+// Edge-avoiding à-trous wavelet denoiser for the path-traced colour pass, guided by the exact
+// ground-truth passes of the same frame (albedo, camera-frame normal, z-depth).
+//
+// References: H. Dammertz, D. Sewtz, J. Hanika, H. Lensch, "Edge-Avoiding À-Trous Wavelet
+// Transform for fast Global Illumination Filtering", HPG 2010; C. Schied et al.,
+// "Spatiotemporal Variance-Guided Filtering" (SVGF), HPG 2017 (variance-guided luminance weight
+// and variance propagation). Only the spatial part of SVGF is used: we filter single frames.
+//
+// Pipeline (docs/denoise.md has the why and the measured speed):
+//  1. Demodulate: E_c = rgb_c / max(albedo_c, eps), so the filter sees irradiance, which is
+//     smooth across texture edges; the result is remodulated by the same max(albedo_c, eps).
+//  2. Noise level: sigma_E(p), the standard deviation of the luminance of E at p. From the
+//     caller's variance image (variance of the pixel *mean*, per channel or one value for all
+//     three), assuming fully correlated channels: sigma_E = sum_c w_c sqrt(var_c) / max(a_c, eps)
+//     with Rec. 709 weights w. Without it, a robust estimate: per 16x16 tile, 1.4826 x the median
+//     absolute residual of E's luminance against its 4-neighbour mean (Donoho & Johnstone 1994),
+//     bilinearly interpolated between tile centres.
+//  3. N passes i = 0..N-1 of the 5x5 B3-spline kernel h = (1, 4, 6, 4, 1)/16 with holes,
+//     tap spacing 2^i pixels:
+//        E'(p) = sum_q w(p,q) E(q) / sum_q w(p,q),  Var'(p) = sum_q w^2 Var(q) / (sum_q w)^2,
+//        w(p,q) = h(dx) h(dy) exp(-(e_n + e_z + e_a + e_l)), with
+//        e_n = sigma_normal (1 - n_p . n_q)                                 (~ SVGF's (n.n)^128)
+//        e_z = |iz_q - (iz_p + grad(iz)_p . (q - p))| / (sigma_depth iz_p),  iz = 1 / z
+//        e_a = |a_p - a_q|^2 / (2 sigma_albedo^2)
+//        e_l = |l_p - l_q| / (sigma_color sqrt(g3x3(Var)(p)) + 1e-8)     (l = luminance of E)
+//     Inverse z-depth is affine in pixel coordinates on any plane seen by a pinhole camera, so
+//     e_z is 0 on planes at any slant and measures the jump at occlusion boundaries. The
+//     gradient is the smaller one-sided difference, so it never straddles an occlusion edge.
+//  4. Remodulate; pixels without a surface (depth <= 0, zero normal) or with non-finite colour
+//     are never used as neighbours and are copied through unchanged.
+//
+// Deterministic: every output pixel is a fixed-order sum over its own taps, so 1 or N threads
+// give identical bytes. Never apply it to ground-truth passes (they are exact), and it is off by
+// default in the renderer: it trades noise for bias.
+#include <string>
+
+#include "core/image.h"
+
+namespace inet {
+
+/// Parameters of the filter. Defaults follow SVGF where it has one (sigma_normal 128, sigma_color
+/// 4, 5 iterations); sigma_depth and sigma_albedo are ours (see docs/denoise.md).
+struct DenoiseOptions {
+  int iterations = 5;            ///< à-trous levels, 1..10; support is 1 + 4 (2^N - 1) px wide
+  float sigma_normal = 128.f;    ///< normal sharpness: weight exp(-sigma_normal (1 - cos angle))
+  float sigma_depth = 0.01f;     ///< tolerated deviation from p's tangent plane, relative to z
+  float sigma_albedo = 0.1f;     ///< albedo difference (linear reflectance, L2) at weight e^-1/2
+  float sigma_color = 4.f;       ///< luminance difference, in noise standard deviations
+  float albedo_epsilon = 0.01f;  ///< demodulation floor: rgb / max(albedo, albedo_epsilon)
+
+  /// "iterations=5 sigma_normal=128 ..." for logs and dataset provenance.
+  std::string describe() const;
+};
+
+/// Throws InputError(where, "denoise.<field>", ...) if a parameter is out of range (iterations
+/// outside 1..10, a sigma not finite and > 0, albedo_epsilon not in (0, 1]).
+void validateDenoiseOptions(const DenoiseOptions& options, const std::string& where);
+
+/// Denoises `rgb` (3 channels, linear). albedo (3), normal (3, unit, camera frame, (0,0,0) = no
+/// surface) and depth (1, z-depth in metres, 0 = no surface) come from the same frame and must
+/// have rgb's size (a mismatch is a bug: INET_CHECK). `variance`, if not null, is the per-pixel
+/// variance of the mean of rgb, 1 channel (same for R, G, B) or 3; it steers the colour weight.
+/// Without it the noise level is estimated robustly (see above). Runs in parallel over rows with
+/// TBB; the output does not depend on the thread count.
+ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
+               const ImageF* variance, const DenoiseOptions& options);
+
+/// Variance of the mean of two independent half-sample buffers A and B (same spp each), per
+/// channel: ((A - B) / 2)^2, the one-degree-of-freedom unbiased estimate of Var((A + B) / 2).
+/// It is very noisy; denoise() smooths the variance with a 3x3 Gaussian before using it.
+ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b);
+
+}  // namespace inet

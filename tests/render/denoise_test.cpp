@@ -1,0 +1,307 @@
+// The à-trous denoiser on a synthetic frame whose clean image is known exactly: a smooth shading
+// field times a sharp checkerboard albedo, on a concave wall corner (normal crease) with a box in
+// front (depth discontinuity), plus zero-mean noise of known per-pixel variance.
+#include "render/denoise.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <initializer_list>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "render/sensor_noise.h"
+
+namespace inet {
+namespace {
+
+struct SyntheticFrame {
+  ImageF clean, noisy, albedo, normal, depth, variance;
+};
+
+void setNormal(ImageF& n, int x, int y, double nx, double ny, double nz) {
+  double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+  n.at(x, y, 0) = static_cast<float>(nx / len);
+  n.at(x, y, 1) = static_cast<float>(ny / len);
+  n.at(x, y, 2) = static_cast<float>(nz / len);
+}
+
+/// The scene. Camera frame: x right, y down, z forward; normals face the camera (n_z < 0).
+SyntheticFrame makeFrame(int w, int h, uint64_t seed, double noise_scale = 0.2) {
+  SyntheticFrame f{ImageF(w, h, 3), ImageF(w, h, 3), ImageF(w, h, 3),
+                   ImageF(w, h, 3), ImageF(w, h, 1), ImageF(w, h, 3)};
+  const double light[3] = {0.2 / 0.9894, -0.6 / 0.9894, -0.77 / 0.9894};  // towards the light
+  const double tint[3] = {1.0, 0.95, 0.85};
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      bool box = x >= w * 0.15 && x < w * 0.42 && y >= h * 0.55 && y < h * 0.9;
+      bool left = x < w / 2;
+      double inv_z = 1.0 / 3.0 + 0.002 * std::abs(x + 0.5 - w / 2.0) + 0.0005 * (y - h / 2.0);
+      if (box) {
+        inv_z = 1.0;
+        setNormal(f.normal, x, y, 0, 0, -1);
+      } else {
+        setNormal(f.normal, x, y, left ? 0.6 : -0.6, 0.05, -0.8);
+      }
+      f.depth.at(x, y) = static_cast<float>(1.0 / inv_z);
+      // Albedo: 8 px checker on the walls, 6 px checker in other colours on the box.
+      int cell = box ? 6 : 8;
+      bool odd = ((x / cell) + (y / cell)) % 2 == 1;
+      const float wall_a[3] = {0.75f, 0.7f, 0.6f}, wall_b[3] = {0.15f, 0.2f, 0.3f};
+      const float box_a[3] = {0.9f, 0.3f, 0.2f}, box_b[3] = {0.2f, 0.6f, 0.3f};
+      const float* a = box ? (odd ? box_b : box_a) : (odd ? wall_b : wall_a);
+      double n_dot_l = 0;
+      for (int c = 0; c < 3; ++c) n_dot_l += f.normal.at(x, y, c) * light[c];
+      double dx = x - 0.7 * w, dy = y - 0.3 * h, s = 0.35 * w;
+      double falloff = 0.6 + 0.4 * std::exp(-(dx * dx + dy * dy) / (2 * s * s));
+      double irradiance = (0.3 + 1.2 * std::max(0.0, n_dot_l)) * falloff;
+      CounterRng rng(seed, RngStream::Sensor, 7, static_cast<uint32_t>(y * w + x), 0);
+      double common = standardNormal(rng);
+      for (int c = 0; c < 3; ++c) {
+        f.albedo.at(x, y, c) = a[c];
+        double clean = irradiance * tint[c] * a[c];
+        // Path-tracer-like: std-dev grows with the signal; channels 64 % correlated.
+        double sd = noise_scale * std::sqrt(clean) + 0.01;
+        double z = 0.8 * common + 0.6 * standardNormal(rng);
+        f.clean.at(x, y, c) = static_cast<float>(clean);
+        f.noisy.at(x, y, c) = static_cast<float>(clean + sd * z);
+        f.variance.at(x, y, c) = static_cast<float>(sd * sd);
+      }
+    }
+  }
+  return f;
+}
+
+/// RMSE against the clean image over the pixels `in(x, y)` selects (all channels).
+double rmse(const ImageF& img, const ImageF& clean, const std::function<bool(int, int)>& in) {
+  double sum = 0;
+  long n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      if (!in(x, y)) continue;
+      for (int c = 0; c < 3; ++c) {
+        double d = img.at(x, y, c) - clean.at(x, y, c);
+        sum += d * d;
+        ++n;
+      }
+    }
+  return std::sqrt(sum / static_cast<double>(n));
+}
+
+bool everywhere(int, int) {
+  return true;
+}
+
+/// The 1-pixel-wide band on both sides of every albedo edge: a 4-neighbour has other albedo.
+std::function<bool(int, int)> albedoEdgeBand(const ImageF& albedo) {
+  return [&albedo](int x, int y) {
+    const int dxs[4] = {-1, 1, 0, 0}, dys[4] = {0, 0, -1, 1};
+    for (int k = 0; k < 4; ++k) {
+      int qx = x + dxs[k], qy = y + dys[k];
+      if (qx < 0 || qy < 0 || qx >= albedo.width || qy >= albedo.height) continue;
+      for (int c = 0; c < 3; ++c)
+        if (albedo.at(x, y, c) != albedo.at(qx, qy, c)) return true;
+    }
+    return false;
+  };
+}
+
+/// The 1-pixel band on both sides of the crease and of the box outline: the normal changes.
+std::function<bool(int, int)> geometryEdgeBand(const ImageF& normal) {
+  return [&normal](int x, int y) {
+    const int dxs[4] = {-1, 1, 0, 0}, dys[4] = {0, 0, -1, 1};
+    for (int k = 0; k < 4; ++k) {
+      int qx = x + dxs[k], qy = y + dys[k];
+      if (qx < 0 || qy < 0 || qx >= normal.width || qy >= normal.height) continue;
+      for (int c = 0; c < 3; ++c)
+        if (normal.at(x, y, c) != normal.at(qx, qy, c)) return true;
+    }
+    return false;
+  };
+}
+
+double meanOf(const ImageF& img) {
+  double s = 0;
+  for (float v : img.data) s += v;
+  return s / static_cast<double>(img.data.size());
+}
+
+/// A 5x5 box blur: what an edge-unaware filter does to the checker, as a sensitivity check.
+ImageF boxBlur5(const ImageF& img) {
+  ImageF out(img.width, img.height, img.channels);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < img.channels; ++c) {
+        double s = 0;
+        int n = 0;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= img.width || qy >= img.height) continue;
+            s += img.at(qx, qy, c);
+            ++n;
+          }
+        out.at(x, y, c) = static_cast<float>(s / n);
+      }
+  return out;
+}
+
+TEST(Denoise, WithVarianceCutsRmseFiveTimesAndKeepsAlbedoEdges) {
+  SyntheticFrame f = makeFrame(256, 192, 1);
+  ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, &f.variance, DenoiseOptions{});
+  double before = rmse(f.noisy, f.clean, everywhere), after = rmse(out, f.clean, everywhere);
+  auto band = albedoEdgeBand(f.albedo);
+  double band_before = rmse(f.noisy, f.clean, band), band_after = rmse(out, f.clean, band);
+  double band_blur = rmse(boxBlur5(f.noisy), f.clean, band);
+  std::printf(
+      "RMSE noisy %.5f -> denoised %.5f (x%.1f); albedo edge band %.5f -> %.5f "
+      "(5x5 box blur: %.5f)\n",
+      before, after, before / after, band_before, band_after, band_blur);
+  EXPECT_LT(after, before / 5);
+  // Edges are not smeared: the edge band improves about as much as the whole image, whereas a
+  // blur that ignores the albedo makes the band far worse than the noisy input.
+  EXPECT_LT(band_after, band_before / 4);
+  EXPECT_LT(band_after, 2.0 * after);
+  EXPECT_GT(band_blur, band_before);
+  // Same for the geometric edges (normal crease, depth discontinuity at the box outline).
+  auto geo = geometryEdgeBand(f.normal);
+  double geo_before = rmse(f.noisy, f.clean, geo), geo_after = rmse(out, f.clean, geo);
+  std::printf("geometry edge band %.5f -> %.5f\n", geo_before, geo_after);
+  EXPECT_LT(geo_after, geo_before / 4);
+  EXPECT_LT(geo_after, 3.0 * after);  // only about half of the kernel lies on the same surface
+  double mean_in = meanOf(f.noisy), mean_out = meanOf(out);
+  std::printf("mean: clean %.5f noisy %.5f denoised %.5f\n", meanOf(f.clean), mean_in, mean_out);
+  EXPECT_NEAR(mean_out / mean_in, 1.0, 0.005) << mean_in << " vs " << mean_out;
+  EXPECT_NEAR(mean_out / meanOf(f.clean), 1.0, 0.005);
+}
+
+TEST(Denoise, WithoutVarianceRobustEstimateAlsoCutsRmseFiveTimes) {
+  SyntheticFrame f = makeFrame(256, 192, 2);
+  ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, nullptr, DenoiseOptions{});
+  double before = rmse(f.noisy, f.clean, everywhere), after = rmse(out, f.clean, everywhere);
+  auto band = albedoEdgeBand(f.albedo);
+  double band_before = rmse(f.noisy, f.clean, band), band_after = rmse(out, f.clean, band);
+  std::printf("no variance: RMSE %.5f -> %.5f (x%.1f); edge band %.5f -> %.5f\n", before, after,
+              before / after, band_before, band_after);
+  EXPECT_LT(after, before / 5);
+  EXPECT_LT(band_after, band_before / 4);
+  EXPECT_NEAR(meanOf(out) / meanOf(f.noisy), 1.0, 0.005);
+}
+
+TEST(Denoise, VarianceFromHalfBuffersIsUnbiased) {
+  // Two half buffers with iid N(0, s^2) noise: Var of their mean is s^2 / 2.
+  const int w = 200, h = 100;
+  const double s = 0.3;
+  ImageF a(w, h, 3), b(w, h, 3);
+  for (size_t i = 0; i < a.data.size(); ++i) {
+    CounterRng rng(5, RngStream::Sensor, 0, static_cast<uint32_t>(i), 1);
+    a.data[i] = static_cast<float>(0.5 + s * standardNormal(rng));
+    b.data[i] = static_cast<float>(0.5 + s * standardNormal(rng));
+  }
+  double m = meanOf(varianceFromHalfBuffers(a, b));
+  EXPECT_NEAR(m / (s * s / 2), 1.0, 0.02);
+}
+
+TEST(Denoise, HalfBufferVarianceDrivesTheFilter) {
+  SyntheticFrame f = makeFrame(256, 192, 3);
+  // Split the noisy frame into two halves with the same mean: A = x + d, B = x - d with d of
+  // variance Var(x): Var((A+B)/2) estimate = d^2, unbiased for Var(x).
+  ImageF half_a = f.noisy, half_b = f.noisy;
+  for (size_t i = 0; i < f.noisy.data.size(); ++i) {
+    CounterRng rng(9, RngStream::Sensor, 0, static_cast<uint32_t>(i), 2);
+    float d = static_cast<float>(std::sqrt(f.variance.data[i]) * standardNormal(rng));
+    half_a.data[i] += d;
+    half_b.data[i] -= d;
+  }
+  ImageF var = varianceFromHalfBuffers(half_a, half_b);
+  ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, &var, DenoiseOptions{});
+  EXPECT_LT(rmse(out, f.clean, everywhere), rmse(f.noisy, f.clean, everywhere) / 5);
+}
+
+TEST(Denoise, ConstantImageStaysConstant) {
+  const int w = 64, h = 48;
+  ImageF rgb(w, h, 3), albedo(w, h, 3), normal(w, h, 3), depth(w, h, 1, 2.5f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c[3] = {0.3f, 0.5f, 0.7f}, a[3] = {0.6f, 0.4f, 0.8f};
+      for (int k = 0; k < 3; ++k) rgb.at(x, y, k) = c[k], albedo.at(x, y, k) = a[k];
+      normal.at(x, y, 2) = -1.f;
+    }
+  ImageF var(w, h, 1, 0.01f);
+  for (const ImageF* v : std::initializer_list<const ImageF*>{nullptr, &var}) {
+    ImageF out = denoise(rgb, albedo, normal, depth, v, DenoiseOptions{});
+    for (size_t i = 0; i < out.data.size(); ++i)
+      ASSERT_NEAR(out.data[i], rgb.data[i], 2e-6f * rgb.data[i]) << "index " << i;
+  }
+}
+
+TEST(Denoise, SameBytesForOneAndTwoThreadsAt640x480) {
+  SyntheticFrame f = makeFrame(640, 480, 4);
+  auto run = [&](int threads, const ImageF* var) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    auto t0 = std::chrono::steady_clock::now();
+    ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, var, DenoiseOptions{});
+    double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("640x480, %d thread(s), %s: %.1f ms\n", threads,
+                var ? "with variance" : "robust estimate", ms);
+    return out;
+  };
+  for (const ImageF* var : std::initializer_list<const ImageF*>{&f.variance, nullptr}) {
+    ImageF one = run(1, var), two = run(2, var);
+    EXPECT_TRUE(one == two);
+  }
+}
+
+TEST(Denoise, PixelsWithoutSurfaceOrFiniteColourPassThroughAndDoNotSpread) {
+  SyntheticFrame f = makeFrame(64, 48, 5);
+  for (int y = 0; y < 10; ++y)  // a strip of sky: no surface
+    for (int x = 0; x < 64; ++x) {
+      f.depth.at(x, y) = 0.f;
+      for (int c = 0; c < 3; ++c) f.normal.at(x, y, c) = 0.f, f.noisy.at(x, y, c) = 50.f;
+    }
+  f.noisy.at(30, 30, 1) = NAN;
+  f.noisy.at(31, 30, 0) = INFINITY;
+  ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, &f.variance, DenoiseOptions{});
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 64; ++x) ASSERT_EQ(out.at(x, y, 0), 50.f);
+  EXPECT_TRUE(std::isnan(out.at(30, 30, 1)));
+  EXPECT_TRUE(std::isinf(out.at(31, 30, 0)));
+  for (int y = 10; y < 48; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) {
+        if ((x == 30 || x == 31) && y == 30) continue;
+        ASSERT_TRUE(std::isfinite(out.at(x, y, c))) << x << "," << y;
+        ASSERT_LT(out.at(x, y, c), 5.f) << "sky leaked into (" << x << "," << y << ")";
+      }
+}
+
+TEST(Denoise, TinyImagesAndBadOptions) {
+  for (int w : {1, 2, 3})
+    for (int h : {1, 2}) {
+      SyntheticFrame f = makeFrame(w, h, 6);
+      ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, nullptr, DenoiseOptions{});
+      EXPECT_EQ(out.width, w);
+      for (float v : out.data) EXPECT_TRUE(std::isfinite(v));
+    }
+  SyntheticFrame f = makeFrame(8, 8, 6);
+  DenoiseOptions bad;
+  bad.sigma_depth = 0.f;
+  try {
+    denoise(f.noisy, f.albedo, f.normal, f.depth, nullptr, bad);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "denoise.sigma_depth");
+  }
+  bad = DenoiseOptions{};
+  bad.iterations = 0;
+  EXPECT_THROW(validateDenoiseOptions(bad, "cfg.json"), InputError);
+  EXPECT_NE(DenoiseOptions{}.describe().find("iterations=5"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace inet
