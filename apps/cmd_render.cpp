@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "dataset/image_encode.h"
 #include "dataset/image_io.h"
+#include "render/lens.h"
 #include "render/renderer.h"
 #include "trajectory/builtin_trajectory.h"
 
@@ -24,8 +25,29 @@ struct RenderArgs {
   uint64_t seed = 0;
   int threads = 0;
   std::string pass = "rgb";
+  std::string lens = "pinhole";
+  double aperture = 0.0;
+  double focus = 2.0;
+  double fisheye_fov = 180.0;
   std::string out;
 };
+
+/// The lens of the command line around the camera.json intrinsics. Fisheye and panorama use
+/// their own image sizes (the paper's 600x600 fisheye, 5000x2500 panorama) unless the camera
+/// file is square (fisheye) or 2:1 (panorama).
+LensModel makeLens(const RenderArgs& a, const CameraIntrinsics& K) {
+  LensType type = parseLensType(a.lens, "render", "--lens");
+  LensModel lens = LensModel::pinhole(K);
+  if (type == LensType::ThinLens) {
+    lens = LensModel::thinLens(K, a.aperture, a.focus);
+  } else if (type == LensType::Fisheye) {
+    lens = LensModel::fisheye(K.width == K.height ? K.width : 600, a.fisheye_fov);
+  } else if (type == LensType::Panorama) {
+    lens = K.width == 2 * K.height ? LensModel::panorama(K.width, K.height) : LensModel::panorama();
+  }
+  lens.validate("render");
+  return lens;
+}
 
 void runRender(const RenderArgs& a) {
   std::filesystem::path out(a.out);
@@ -44,6 +66,7 @@ void runRender(const RenderArgs& a) {
   } else {
     throw InputError("", "--camera", "required with --scene/--layout");
   }
+  LensModel lens = makeLens(a, cam.intrinsics);
   ThreadLimit limit(a.threads);
   Scene scene = a.scene.load();
   Renderer renderer(scene);
@@ -53,7 +76,7 @@ void runRender(const RenderArgs& a) {
   opt.seed = a.seed;
   opt.passes = pass;
   Frame f;
-  renderer.render(cam.intrinsics, cam.T_world_camera, opt, 0, f);
+  renderer.render(lens, cam.T_world_camera, opt, 0, f);
   ImageF img;
   if (has(pass, Pass::Rgb))
     img = f.rgb;
@@ -97,6 +120,14 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_option("--pass", a->pass,
                   "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
+  cmd->add_option(
+      "--lens", a->lens,
+      "pinhole (with the camera's distortion), thin_lens (depth of field), fisheye "
+      "(equidistant, 600x600, 180 deg), panorama (equirectangular 5000x2500); default pinhole");
+  cmd->add_option("--aperture", a->aperture, "thin_lens aperture radius in metres (default 0)");
+  cmd->add_option("--focus", a->focus, "thin_lens focus distance in metres (default 2)");
+  cmd->add_option("--fisheye-fov", a->fisheye_fov,
+                  "fisheye field of view in degrees (default 180)");
   cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")
       ->required();
   cmd->callback([a] { runRender(*a); });

@@ -1,0 +1,146 @@
+// Analytic lights against closed forms: a large Lambertian floor (albedo a) seen from above, lit by
+// one light. The floor's radiance toward the camera is a/pi * E, where E is the irradiance the
+// light gives the floor point, so every pixel's expected value follows from the light alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/color.h"
+#include "render/renderer.h"
+#include "scene/primitives.h"
+
+namespace inet {
+namespace {
+
+constexpr double kAlbedo = 0.6;
+
+Scene floorScene() {
+  Scene s;
+  Mesh quad = makePrimitive("quad", {}, "t", "quad");
+  quad.id = "quad";
+  s.meshes = {quad};
+  Material m;
+  m.id = "floor";
+  m.albedo = Vec3f::Constant(static_cast<float>(kAlbedo));
+  s.materials = {m};
+  Mat4 T = Mat4::Identity();
+  T.diagonal() << 200, 200, 1, 1;
+  s.objects = {Object{"floor", 0, 0, T, 2, 1}};
+  return s;
+}
+
+/// Mean floor radiance seen in a tiny field of view around the floor point (px, py, 0).
+double floorRadiance(const Scene& s, double px, double py, int spp = 256) {
+  Renderer r(s);
+  CameraIntrinsics K;
+  K.width = K.height = 4;
+  K.fx = K.fy = 40000;
+  K.cx = K.cy = 2;
+  RenderOptions opt;
+  opt.spp = spp;
+  opt.max_bounces = 1;
+  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  Frame f;
+  r.render(K, Pose::lookAt(Vec3(px, py, 1.0), Vec3(px, py, 0), Vec3::UnitY()), opt, 0, f);
+  double sum = 0;
+  for (size_t i = 0; i < f.rgb.pixelCount(); ++i) sum += f.rgb.data[3 * i + 1];  // green
+  return sum / f.rgb.pixelCount();
+}
+
+Light pointLight(Vec3 p, float intensity) {
+  Light l;
+  l.name = "bulb";
+  l.type = LightType::Point;
+  l.position = p;
+  l.intensity = intensity;
+  return l;
+}
+
+TEST(Lights, PointLightInverseSquareAndCosine) {
+  Scene s = floorScene();
+  s.lights = {pointLight(Vec3(0, 0, 2), 5.f)};
+  // under the light: E = I / h^2; beside it at x: E = I cos / d^2 = I h / d^3
+  EXPECT_NEAR(floorRadiance(s, 0, 0), kAlbedo / M_PI * 5.0 / 4.0, 1e-3);
+  double d = std::sqrt(1.5 * 1.5 + 4.0);
+  EXPECT_NEAR(floorRadiance(s, 1.5, 0), kAlbedo / M_PI * 5.0 * 2.0 / (d * d * d), 1e-3);
+}
+
+TEST(Lights, RangeAndOnOff) {
+  Scene s = floorScene();
+  Light l = pointLight(Vec3(0, 0, 2), 5.f);
+  l.max_distance = 2.5f;
+  s.lights = {l};
+  EXPECT_GT(floorRadiance(s, 0, 0), 0.0);
+  EXPECT_EQ(floorRadiance(s, 3, 0), 0.0) << "beyond max_distance";
+  s.lights[0].on = false;
+  EXPECT_EQ(floorRadiance(s, 0, 0), 0.0) << "switched off";
+}
+
+TEST(Lights, SpotConeAndFalloff) {
+  Scene s = floorScene();
+  Light l = pointLight(Vec3(0, 0, 2), 5.f);
+  l.type = LightType::Spot;
+  l.direction = -Vec3::UnitZ();
+  l.cone_deg = 30.f;
+  l.falloff_deg = 10.f;
+  s.lights = {l};
+  // on the axis: like a point light; inside the inner cone (< 20 deg): unchanged
+  EXPECT_NEAR(floorRadiance(s, 0, 0), kAlbedo / M_PI * 5.0 / 4.0, 1e-3);
+  double x_in = 2.0 * std::tan(15.0 * M_PI / 180.0), d = std::sqrt(x_in * x_in + 4.0);
+  EXPECT_NEAR(floorRadiance(s, x_in, 0), kAlbedo / M_PI * 5.0 * 2.0 / (d * d * d), 1e-3);
+  // in the smooth edge: strictly between; outside the cone: dark
+  double x_edge = 2.0 * std::tan(25.0 * M_PI / 180.0), de = std::sqrt(x_edge * x_edge + 4.0);
+  double full = kAlbedo / M_PI * 5.0 * 2.0 / (de * de * de), got = floorRadiance(s, x_edge, 0);
+  EXPECT_GT(got, 0.05 * full);
+  EXPECT_LT(got, 0.95 * full);
+  EXPECT_EQ(floorRadiance(s, 2.0 * std::tan(35.0 * M_PI / 180.0), 0), 0.0);
+}
+
+TEST(Lights, SunIrradianceTimesCosine) {
+  Scene s = floorScene();
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::Sun;
+  double elevation = 40.0 * M_PI / 180.0;
+  sun.direction = -Vec3(std::cos(elevation), 0, std::sin(elevation));
+  sun.intensity = 3.f;  // W/m^2 normal to the rays
+  s.lights = {sun};
+  // E on the floor = E_normal * sin(elevation); the camera's own floor point is unoccluded
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 1024), kAlbedo / M_PI * 3.0 * std::sin(elevation), 2e-3);
+}
+
+// 60 point lights of random power: picking one per sample in proportion to power must converge
+// to the sum of their contributions.
+TEST(Lights, SixtyLightsConvergeToTheSum) {
+  Scene s = floorScene();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  double expected_E = 0;
+  for (int i = 0; i < 60; ++i) {
+    Vec3 p(-3 + 6 * u(rng), -3 + 6 * u(rng), 0.5 + 2.5 * u(rng));
+    float I = static_cast<float>(0.05 + 2 * u(rng));
+    s.lights.push_back(pointLight(p, I));
+    double d2 = p.squaredNorm();
+    expected_E += I * p.z() / (d2 * std::sqrt(d2));
+  }
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 8192), kAlbedo / M_PI * expected_E,
+              0.01 * kAlbedo / M_PI * expected_E);
+}
+
+TEST(Blackbody, WhitePointAndWarmLight) {
+  Eigen::Vector3f d65 = blackbodyRgb(6504);
+  EXPECT_LT(d65.maxCoeff() / d65.minCoeff(), 1.1) << d65.transpose();
+  Eigen::Vector3f warm = blackbodyRgb(2700);
+  EXPECT_GT(warm.x(), warm.y());
+  EXPECT_GT(warm.y(), warm.z());
+  Eigen::Vector3f cold = blackbodyRgb(12000);
+  EXPECT_GT(cold.z(), cold.x());
+  for (float k : {1500.f, 2700.f, 6504.f, 20000.f}) {
+    Eigen::Vector3f c = blackbodyRgb(k);
+    EXPECT_NEAR(0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z(), 1.0, 1e-5);
+  }
+}
+
+}  // namespace
+}  // namespace inet
