@@ -23,7 +23,36 @@ void checkDevice(RTCDevice device, const char* what) {
         fmt::format("Embree failed in {} (error {})", what, static_cast<int>(err)));
 }
 
+Metal metalByName(const std::string& name) {
+  for (Metal m : {Metal::Gold, Metal::Silver, Metal::Copper, Metal::Aluminium, Metal::Chromium})
+    if (metalName(m) == name) return m;
+  INET_CHECK_MSG(false, "unknown metal " + name + " (Scene::validate lets only known names in)");
+  return Metal::Aluminium;
+}
+
 }  // namespace
+
+BsdfParams bsdfOf(const Material& m) {
+  const float alpha = roughnessToAlpha(m.roughness);
+  switch (m.type) {
+    case MaterialType::Lambertian:
+      return makeLambertian(m.albedo);
+    case MaterialType::Conductor: {
+      BsdfParams p = makeMetal(metalByName(m.metal), alpha);
+      p.specular_tint = m.albedo;
+      return p;
+    }
+    case MaterialType::Plastic:
+      return makePlastic(m.albedo, alpha, m.ior);
+    case MaterialType::Dielectric:
+      return makeDielectric(m.ior, alpha, m.transmittance);
+    case MaterialType::ThinDielectric:
+      return makeThinDielectric(m.ior, m.transmittance);
+    case MaterialType::Translucent:
+      return makeTranslucent(m.albedo, m.transmittance);
+  }
+  return makeLambertian(m.albedo);
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
   auto t0 = std::chrono::steady_clock::now();
@@ -44,6 +73,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     const Material& mat = scene.materials[o.material];
     ObjectShading& s = objects_[i];
     s.albedo = mat.albedo;
+    s.bsdf = bsdfOf(mat);
     s.emission = mat.emission;
     s.nyu40 = static_cast<uint8_t>(o.nyu40);
     s.instance = static_cast<uint16_t>(o.instance);

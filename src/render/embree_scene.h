@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "render/bsdf.h"
 #include "render/lights.h"
 #include "scene/scene.h"
 
@@ -18,6 +19,7 @@ namespace inet {
 
 /// What shading and the ground-truth passes need to know about the object a ray hit.
 struct ObjectShading {
+  BsdfParams bsdf;
   Vec3f albedo;
   Vec3f emission;
   uint8_t nyu40 = 0;
@@ -25,6 +27,9 @@ struct ObjectShading {
   Eigen::Matrix3f normal_to_world = Eigen::Matrix3f::Identity();  ///< inverse transpose
   int first_light = -1;  ///< index of this object's first emissive triangle, -1 if none
 };
+
+/// The BSDF of a scene material (roughness -> GGX alpha, metal preset -> complex IOR).
+BsdfParams bsdfOf(const Material& m);
 
 class EmbreeScene {
  public:

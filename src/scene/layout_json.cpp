@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -248,20 +249,59 @@ Mesh parseMesh(const Reader& r, const json& j, const std::string& field, const f
 }
 
 Material parseMaterial(const Reader& r, const json& j, const std::string& field) {
-  r.object(j, field, {"id", "type", "albedo"}, {"emission"});
-  Material m;
-  m.id = r.string(j["id"], dot(field, "id"));
+  if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
+  if (!j.contains("type")) r.fail(dot(field, "type"), "missing required key");
   const std::string type = r.string(j["type"], dot(field, "type"));
-  if (type != "lambertian")
-    r.fail(dot(field, "type"), "unknown material type '" + type + "' (valid: lambertian)");
-  m.albedo = r.vec3f(j["albedo"], dot(field, "albedo"));
-  if (m.albedo.minCoeff() < 0.f || m.albedo.maxCoeff() > 1.f)
-    r.fail(dot(field, "albedo"), "each channel must be in [0, 1] (linear reflectance)");
+  Material m;
+  // required and optional keys per family
+  static const std::vector<std::tuple<std::string, MaterialType, Keys, Keys>> kTypes = {
+      {"lambertian", MaterialType::Lambertian, {"id", "type", "albedo"}, {"emission"}},
+      {"conductor",
+       MaterialType::Conductor,
+       {"id", "type", "metal"},
+       {"roughness", "albedo", "emission"}},
+      {"plastic",
+       MaterialType::Plastic,
+       {"id", "type", "albedo"},
+       {"roughness", "ior", "emission"}},
+      {"dielectric",
+       MaterialType::Dielectric,
+       {"id", "type"},
+       {"ior", "roughness", "transmittance"}},
+      {"thin_dielectric", MaterialType::ThinDielectric, {"id", "type"}, {"ior", "transmittance"}},
+      {"translucent",
+       MaterialType::Translucent,
+       {"id", "type", "albedo", "transmittance"},
+       {"emission"}},
+  };
+  bool known = false;
+  for (const auto& [name, t, required, optional] : kTypes) {
+    if (name != type) continue;
+    r.object(j, field, required, optional);
+    m.type = t;
+    known = true;
+  }
+  if (!known)
+    r.fail(dot(field, "type"), "unknown material type '" + type +
+                                   "' (valid: lambertian, conductor, plastic, dielectric, "
+                                   "thin_dielectric, translucent)");
+  m.id = r.string(j["id"], dot(field, "id"));
+  if (m.type == MaterialType::Conductor) m.albedo = Vec3f::Ones();
+  if (j.contains("albedo")) {
+    m.albedo = r.vec3f(j["albedo"], dot(field, "albedo"));
+    if (m.albedo.minCoeff() < 0.f || m.albedo.maxCoeff() > 1.f)
+      r.fail(dot(field, "albedo"), "each channel must be in [0, 1] (linear reflectance)");
+  }
   if (j.contains("emission")) {
     m.emission = r.vec3f(j["emission"], dot(field, "emission"));
     if (m.emission.minCoeff() < 0.f)
       r.fail(dot(field, "emission"), "each channel must be >= 0 (radiance, W sr^-1 m^-2)");
   }
+  if (j.contains("roughness")) m.roughness = r.single(j["roughness"], dot(field, "roughness"));
+  if (j.contains("ior")) m.ior = r.single(j["ior"], dot(field, "ior"));
+  if (j.contains("metal")) m.metal = r.string(j["metal"], dot(field, "metal"));
+  if (j.contains("transmittance"))
+    m.transmittance = r.vec3f(j["transmittance"], dot(field, "transmittance"));
   return m;
 }
 
@@ -459,6 +499,27 @@ ojson lightToJson(const Light& l) {
   return j;
 }
 
+ojson materialToJson(const Material& m) {
+  ojson j;
+  j["id"] = m.id;
+  j["type"] = materialTypeName(m.type);
+  const MaterialType t = m.type;
+  if (t != MaterialType::Dielectric && t != MaterialType::ThinDielectric)
+    j["albedo"] = jsonArray(m.albedo);
+  if (t == MaterialType::Conductor) j["metal"] = m.metal;
+  if (t == MaterialType::Conductor || t == MaterialType::Plastic || t == MaterialType::Dielectric)
+    j["roughness"] = jsonNumber(m.roughness);
+  if (t == MaterialType::Plastic || t == MaterialType::Dielectric ||
+      t == MaterialType::ThinDielectric)
+    j["ior"] = jsonNumber(m.ior);
+  if (t == MaterialType::Dielectric || t == MaterialType::ThinDielectric ||
+      t == MaterialType::Translucent)
+    j["transmittance"] = jsonArray(m.transmittance);
+  if (t != MaterialType::Dielectric && t != MaterialType::ThinDielectric)
+    j["emission"] = jsonArray(m.emission);
+  return j;
+}
+
 ojson meshToJson(const Mesh& m, const std::string& where, const std::string& field) {
   ojson j;
   j["id"] = m.id;
@@ -618,14 +679,7 @@ std::string layoutToJson(const Scene& scene) {
   for (size_t i = 0; i < scene.meshes.size(); ++i)
     root["meshes"].push_back(meshToJson(scene.meshes[i], where, at("meshes", i)));
   root["materials"] = ojson::array();
-  for (const auto& m : scene.materials) {
-    ojson j;
-    j["id"] = m.id;
-    j["type"] = "lambertian";
-    j["albedo"] = jsonArray(m.albedo);
-    j["emission"] = jsonArray(m.emission);
-    root["materials"].push_back(std::move(j));
-  }
+  for (const auto& m : scene.materials) root["materials"].push_back(materialToJson(m));
   root["objects"] = ojson::array();
   for (const auto& o : scene.objects) root["objects"].push_back(objectToJson(scene, o));
   root["lights"] = ojson::array();

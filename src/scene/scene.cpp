@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,6 +14,30 @@ namespace inet {
 Vec3f Light::rgbIntensity() const {
   Vec3f c = temperature_k > 0.f ? blackbodyRgb(temperature_k) : color;
   return c * intensity;
+}
+
+const char* materialTypeName(MaterialType t) {
+  switch (t) {
+    case MaterialType::Lambertian:
+      return "lambertian";
+    case MaterialType::Conductor:
+      return "conductor";
+    case MaterialType::Plastic:
+      return "plastic";
+    case MaterialType::Dielectric:
+      return "dielectric";
+    case MaterialType::ThinDielectric:
+      return "thin_dielectric";
+    case MaterialType::Translucent:
+      return "translucent";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& metalNames() {
+  static const std::vector<std::string> names = {"gold", "silver", "copper", "aluminium",
+                                                 "chromium"};
+  return names;
 }
 
 const char* lightTypeName(LightType t) {
@@ -124,8 +149,23 @@ void Scene::validate(const std::string& where) const {
     if (!(l.max_distance >= 0.f)) throw InputError(where, field + ".max_distance", "must be >= 0");
   }
   for (const auto& m : materials) {
+    const std::string field = "materials['" + m.id + "']";
     if (!m.albedo.allFinite() || m.albedo.minCoeff() < 0 || m.albedo.maxCoeff() > 1)
-      throw InputError(where, "materials['" + m.id + "'].albedo", "each channel must be in [0, 1]");
+      throw InputError(where, field + ".albedo", "each channel must be in [0, 1]");
+    if (!(m.roughness >= 0.f && m.roughness <= 1.f))
+      throw InputError(where, field + ".roughness", "must be in [0, 1]");
+    if (!(m.ior >= 1.0f && m.ior <= 4.0f))
+      throw InputError(where, field + ".ior", "must be in [1, 4]");
+    if (!m.transmittance.allFinite() || m.transmittance.minCoeff() < 0 ||
+        m.transmittance.maxCoeff() > 1)
+      throw InputError(where, field + ".transmittance", "each channel must be in [0, 1]");
+    if (m.type == MaterialType::Translucent && (m.albedo + m.transmittance).maxCoeff() > 1.f)
+      throw InputError(where, field, "albedo + transmittance must be <= 1 per channel (energy)");
+    if (m.type == MaterialType::Conductor &&
+        std::find(metalNames().begin(), metalNames().end(), m.metal) == metalNames().end())
+      throw InputError(
+          where, field + ".metal",
+          fmt::format("unknown metal '{}' (valid: {})", m.metal, fmt::join(metalNames(), ", ")));
     if (!m.emission.allFinite() || m.emission.minCoeff() < 0)
       throw InputError(where, "materials['" + m.id + "'].emission", "must be finite and >= 0");
   }

@@ -42,17 +42,28 @@ struct Mesh {
   bool isSphere() const { return sphere_radius > 0.0f; }
 };
 
-/// Material families (issue 3 adds microfacet, dielectric and transmission).
-enum class MaterialType { Lambertian };
+/// Material families: the InteriorNet paper's four (Lambertian; microfacet: conductor and
+/// coated plastic; dielectric: rough/smooth glass and thin panes; transmission: translucent).
+enum class MaterialType { Lambertian, Conductor, Plastic, Dielectric, ThinDielectric, Translucent };
 
 struct Material {
   std::string id;
   MaterialType type = MaterialType::Lambertian;
-  Vec3f albedo{0.8f, 0.8f, 0.8f};  ///< linear RGB reflectance
-  Vec3f emission{0.f, 0.f, 0.f};   ///< emitted radiance (W sr^-1 m^-2, linear RGB), one-sided
-                                   ///< along the geometric normal
+  Vec3f albedo{0.8f, 0.8f, 0.8f};   ///< linear RGB diffuse reflectance (plastic: base colour;
+                                    ///< conductor: tint of the specular reflection)
+  Vec3f emission{0.f, 0.f, 0.f};    ///< emitted radiance (W sr^-1 m^-2, linear RGB), one-sided
+                                    ///< along the geometric normal
+  float roughness = 0.f;            ///< perceptual roughness in [0, 1]; GGX alpha = roughness^2
+  std::string metal = "aluminium";  ///< conductor: measured preset (see metalNames())
+  float ior = 1.5f;                 ///< plastic coating, dielectric (relative index of refraction)
+  Vec3f transmittance{1.f, 1.f, 1.f};  ///< dielectric tint / translucent diffuse transmission
   bool isEmissive() const { return emission.maxCoeff() > 0.0f; }
 };
+
+/// Material type names as written in layout files ("lambertian", "conductor", ...).
+const char* materialTypeName(MaterialType t);
+/// Conductor presets the renderer knows: gold, silver, copper, aluminium, chromium.
+const std::vector<std::string>& metalNames();
 
 struct Object {
   std::string name;

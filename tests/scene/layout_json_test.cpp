@@ -61,6 +61,16 @@ TEST(LayoutJson, LoadsTheFixture) {
   EXPECT_EQ(s.objects[2].instance, 2);
   EXPECT_EQ(s.materials[2].emission, Vec3f(12.f, 11.5f, 10.5f));
   EXPECT_EQ(s.materials[0].emission, Vec3f::Zero()) << "emission defaults to 0";
+  ASSERT_EQ(s.materials.size(), 8u);
+  EXPECT_EQ(s.materials[3].type, MaterialType::Conductor);
+  EXPECT_EQ(s.materials[3].metal, "gold");
+  EXPECT_FLOAT_EQ(s.materials[3].roughness, 0.35f);
+  EXPECT_EQ(s.materials[4].type, MaterialType::Plastic);
+  EXPECT_FLOAT_EQ(s.materials[4].ior, 1.49f);
+  EXPECT_EQ(s.materials[5].type, MaterialType::Dielectric);
+  EXPECT_EQ(s.materials[6].type, MaterialType::ThinDielectric);
+  EXPECT_EQ(s.materials[7].type, MaterialType::Translucent);
+  EXPECT_EQ(s.materials[7].transmittance, Vec3f(0.3f, 0.3f, 0.25f));
   ASSERT_EQ(s.lights.size(), 3u);
   EXPECT_EQ(s.lights[0].position, Vec3(2.5, 2.0, 2.4));
   EXPECT_EQ(s.lights[0].type, LightType::Point);
@@ -401,6 +411,26 @@ std::vector<BadLayout> objectCases() {
          j["lights"][0]["direction"] = json::array({0, 0, -1});
        }),
        "lights[0].cone_deg", "missing required key"},
+      {"unknown_metal", edited([](json& j) {
+         j["materials"][0] =
+             json::parse(R"({"id": "white", "type": "conductor", "metal": "unobtainium"})");
+       }),
+       "metal", "valid: gold, silver, copper, aluminium, chromium"},
+      {"roughness_above_one", edited([](json& j) {
+         j["materials"][0] = json::parse(
+             R"({"id": "white", "type": "plastic", "albedo": [0.5, 0.5, 0.5], "roughness": 2})");
+       }),
+       "roughness", "[0, 1]"},
+      {"albedo_on_glass", edited([](json& j) {
+         j["materials"][0] =
+             json::parse(R"({"id": "white", "type": "dielectric", "albedo": [0.5, 0.5, 0.5]})");
+       }),
+       "materials[0].albedo", "unknown key"},
+      {"translucent_energy", edited([](json& j) {
+         j["materials"][0] = json::parse(
+             R"({"id": "white", "type": "translucent", "albedo": [0.8, 0.8, 0.8], "transmittance": [0.5, 0.5, 0.5]})");
+       }),
+       "materials", "<= 1"},
       {"light_on_not_bool", edited([](json& j) { j["lights"][0]["on"] = 1; }), "lights[0].on",
        "expected true or false"},
       {"objects_not_array", edited([](json& j) { j["objects"] = json::object(); }), "objects",

@@ -96,6 +96,12 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[i].type, b.materials[i].type);
     EXPECT_EQ(a.materials[i].albedo, b.materials[i].albedo);
     EXPECT_EQ(a.materials[i].emission, b.materials[i].emission);
+    EXPECT_EQ(a.materials[i].roughness, b.materials[i].roughness);
+    EXPECT_EQ(a.materials[i].ior, b.materials[i].ior);
+    EXPECT_EQ(a.materials[i].transmittance, b.materials[i].transmittance);
+    if (a.materials[i].type == MaterialType::Conductor) {
+      EXPECT_EQ(a.materials[i].metal, b.materials[i].metal);
+    }
   }
   ASSERT_EQ(a.objects.size(), b.objects.size());
   for (size_t i = 0; i < a.objects.size(); ++i) {
