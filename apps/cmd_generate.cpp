@@ -42,6 +42,7 @@ struct GenerateArgs {
   std::string sequence = "seq_000";
   std::string out = "out";
   bool progress = true;
+  bool denoise = false;
   CameraIntrinsics K;
   bool cx_set = false, cy_set = false;
 };
@@ -121,6 +122,7 @@ void runGenerate(const GenerateArgs& a) {
   opt.max_bounces = a.max_bounces;
   opt.seed = a.seed;
   opt.passes = passes;
+  opt.denoise = a.denoise;
 
   fs::path dir = fs::path(a.out) / scene.name / a.sequence;
   SequenceSpec spec;
@@ -202,6 +204,9 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--sequence", a->sequence, "sequence folder name (default seq_000)");
   cmd->add_option("--out", a->out,
                   "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
+  cmd->add_flag("--denoise", a->denoise,
+                "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
+                "never filtered); off by default");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");
   cmd->callback([a] { runGenerate(*a); });
 }

@@ -29,6 +29,7 @@ struct RenderArgs {
   double aperture = 0.0;
   double focus = 2.0;
   double fisheye_fov = 180.0;
+  bool denoise = false;
   std::string out;
 };
 
@@ -75,6 +76,7 @@ void runRender(const RenderArgs& a) {
   opt.max_bounces = a.max_bounces;
   opt.seed = a.seed;
   opt.passes = pass;
+  opt.denoise = a.denoise;
   Frame f;
   renderer.render(lens, cam.T_world_camera, opt, 0, f);
   ImageF img;
@@ -128,6 +130,9 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--focus", a->focus, "thin_lens focus distance in metres (default 2)");
   cmd->add_option("--fisheye-fov", a->fisheye_fov,
                   "fisheye field of view in degrees (default 180)");
+  cmd->add_flag("--denoise", a->denoise,
+                "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "
+                "(docs/denoise.md); trades a little bias for much less noise; off by default");
   cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")
       ->required();
   cmd->callback([a] { runRender(*a); });

@@ -57,7 +57,7 @@ class PathTracer final : public Integrator {
  public:
   std::string name() const override { return "path"; }
 
-  void render(const RenderContext& ctx, ImageF& rgb) const override {
+  void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance) const override {
     const CameraIntrinsics& K = ctx.lens.K;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
@@ -67,7 +67,7 @@ class PathTracer final : public Integrator {
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
           auto pixel = static_cast<uint32_t>(y * K.width + x);
-          Vec3f sum = Vec3f::Zero();
+          Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero();
           for (int s = 0; s < spp; ++s) {
             PixelSampler smp(ctx.options.seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
                              static_cast<uint32_t>(spp));
@@ -78,9 +78,17 @@ class PathTracer final : public Integrator {
               continue;  // no ray: black
             Vec3f o = R * cr.origin.cast<float>() + origin;
             Vec3f d = R * cr.dir.cast<float>();
-            sum += radiance(ctx, Ray{o, d.normalized()}, smp);
+            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp);
+            sum += v;
+            sum2 += v.cwiseProduct(v);
           }
-          for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / static_cast<float>(spp);
+          const float n = static_cast<float>(spp);
+          for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / n;
+          if (variance) {  // unbiased sample variance, divided by n: the variance of the mean
+            for (int c = 0; c < 3; ++c)
+              variance->at(x, y, c) =
+                  spp > 1 ? std::max(0.f, (sum2[c] - sum[c] * sum[c] / n) / (n - 1.f)) / n : 0.f;
+          }
         }
       }
     };

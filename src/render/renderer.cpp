@@ -20,7 +20,25 @@ void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
     if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
       frame.rgb = ImageF(K.width, K.height, 3);
     RenderContext ctx{*scene_, lens, T_world_camera, options, frame_index};
-    integrator_->render(ctx, frame.rgb);
+    if (!options.denoise) {
+      integrator_->render(ctx, frame.rgb, nullptr);
+    } else {
+      // the guides come from the same camera as the ground truth; compute those the caller
+      // did not ask for into a scratch frame
+      const PassMask guides = static_cast<PassMask>(Pass::Albedo) |
+                              static_cast<PassMask>(Pass::Normal) |
+                              static_cast<PassMask>(Pass::DepthZ);
+      Frame scratch;
+      const Frame* g = &frame;
+      if ((options.passes & guides) != guides) {
+        inet::renderGroundTruth(*scene_, lens, T_world_camera, guides, scratch);
+        g = &scratch;
+      }
+      ImageF variance(K.width, K.height, 3);
+      integrator_->render(ctx, frame.rgb, &variance);
+      frame.rgb =
+          denoise(frame.rgb, g->albedo, g->normal, g->depth_z, &variance, options.denoise_options);
+    }
     frame.passes |= static_cast<PassMask>(Pass::Rgb);
   } else {
     frame.rgb = {};
