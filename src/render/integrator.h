@@ -51,9 +51,11 @@ class Integrator {
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
   /// Renders linear RGB radiance into `rgb` (3 channels, camera size, already allocated) and,
-  /// if `variance` is not null, the per-pixel variance of that mean (3 channels) for the
-  /// denoiser. Must be deterministic for a given context, whatever the thread count.
-  virtual void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance) const = 0;
+  /// for the denoiser when not null: `emission`, the part of rgb emitted by the first surface
+  /// seen (lights in view, to be kept out of the filter), and `variance`, the per-pixel
+  /// variance of the mean of the rest. Must be deterministic whatever the thread count.
+  virtual void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance,
+                      ImageF* emission) const = 0;
 };
 
 /// Names of the registered integrators.

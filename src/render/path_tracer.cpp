@@ -57,7 +57,8 @@ class PathTracer final : public Integrator {
  public:
   std::string name() const override { return "path"; }
 
-  void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance) const override {
+  void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance,
+              ImageF* emission) const override {
     const CameraIntrinsics& K = ctx.lens.K;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
@@ -67,7 +68,7 @@ class PathTracer final : public Integrator {
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
           auto pixel = static_cast<uint32_t>(y * K.width + x);
-          Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero();
+          Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
           for (int s = 0; s < spp; ++s) {
             PixelSampler smp(ctx.options.seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
                              static_cast<uint32_t>(spp));
@@ -78,16 +79,23 @@ class PathTracer final : public Integrator {
               continue;  // no ray: black
             Vec3f o = R * cr.origin.cast<float>() + origin;
             Vec3f d = R * cr.dir.cast<float>();
-            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp);
+            Vec3f le;
+            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp, le);
             sum += v;
-            sum2 += v.cwiseProduct(v);
+            sum_le += le;
+            Vec3f reflected = v - le;  // the variance guide describes what gets filtered
+            sum2 += reflected.cwiseProduct(reflected);
           }
           const float n = static_cast<float>(spp);
           for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / n;
-          if (variance) {  // unbiased sample variance, divided by n: the variance of the mean
-            for (int c = 0; c < 3; ++c)
+          if (emission)
+            for (int c = 0; c < 3; ++c) emission->at(x, y, c) = sum_le[c] / n;
+          if (variance) {  // unbiased sample variance of the reflected part, divided by n
+            for (int c = 0; c < 3; ++c) {
+              float r = sum[c] - sum_le[c];
               variance->at(x, y, c) =
-                  spp > 1 ? std::max(0.f, (sum2[c] - sum[c] * sum[c] / n) / (n - 1.f)) / n : 0.f;
+                  spp > 1 ? std::max(0.f, (sum2[c] - r * r / n) / (n - 1.f)) / n : 0.f;
+            }
           }
         }
       }
@@ -137,10 +145,14 @@ class PathTracer final : public Integrator {
     return ray.tfar < 0.f;  // Embree sets tfar = -inf on a hit
   }
 
-  Vec3f radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp) const;
+  /// Radiance along a camera ray; `seen_emission` receives the part emitted by the first surface
+  /// hit (directly visible lights), which the denoiser must leave alone.
+  Vec3f radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp, Vec3f& seen_emission) const;
 };
 
-Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp) const {
+Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
+                           Vec3f& seen_emission) const {
+  seen_emission = Vec3f::Zero();
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
   float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray`
@@ -155,6 +167,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp)
       if (sun_pdf > 0.f) {
         float w = (from_camera || prev_delta) ? 1.f : powerHeuristic(prev_bsdf_pdf, sun_pdf);
         L += w * throughput.cwiseProduct(sun);
+        if (from_camera) seen_emission = sun;
       }
       break;
     }
@@ -171,6 +184,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp)
         w = powerHeuristic(prev_bsdf_pdf, scene.lights().trianglePdf(li, t, cos_emit));
       }
       L += w * throughput.cwiseProduct(s.emission);
+      if (from_camera) seen_emission = s.emission;
     }
     if (bounce >= ctx.options.max_bounces) break;
     const BsdfParams& bsdf = s.bsdf;

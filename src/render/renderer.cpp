@@ -21,7 +21,7 @@ void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
       frame.rgb = ImageF(K.width, K.height, 3);
     RenderContext ctx{*scene_, lens, T_world_camera, options, frame_index};
     if (!options.denoise) {
-      integrator_->render(ctx, frame.rgb, nullptr);
+      integrator_->render(ctx, frame.rgb, nullptr, nullptr);
     } else {
       // the guides come from the same camera as the ground truth; compute those the caller
       // did not ask for into a scratch frame
@@ -34,10 +34,13 @@ void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
         inet::renderGroundTruth(*scene_, lens, T_world_camera, guides, scratch);
         g = &scratch;
       }
-      ImageF variance(K.width, K.height, 3);
-      integrator_->render(ctx, frame.rgb, &variance);
+      ImageF variance(K.width, K.height, 3), emission(K.width, K.height, 3);
+      integrator_->render(ctx, frame.rgb, &variance, &emission);
+      // filter only the light reflected by the surfaces; lights in view stay sharp
+      for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] -= emission.data[i];
       frame.rgb =
           denoise(frame.rgb, g->albedo, g->normal, g->depth_z, &variance, options.denoise_options);
+      for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] += emission.data[i];
     }
     frame.passes |= static_cast<PassMask>(Pass::Rgb);
   } else {
