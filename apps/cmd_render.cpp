@@ -30,6 +30,9 @@ struct RenderArgs {
   double focus = 2.0;
   double fisheye_fov = 180.0;
   bool denoise = false;
+  std::string camera_end;
+  double exposure_ms = 0.0;
+  double readout_ms = 0.0;
   std::string out;
 };
 
@@ -78,7 +81,17 @@ void runRender(const RenderArgs& a) {
   opt.passes = pass;
   opt.denoise = a.denoise;
   Frame f;
-  renderer.render(lens, cam.T_world_camera, opt, 0, f);
+  CameraExposure exposure = CameraExposure::fixed(cam.T_world_camera);
+  if (!a.camera_end.empty()) {
+    if (!(a.exposure_ms > 0 || a.readout_ms > 0))
+      throw InputError("", "--camera-end", "needs --exposure-ms and/or --readout-ms > 0");
+    exposure.T_world_camera_close = loadCameraJson(a.camera_end).T_world_camera;
+  }
+  if (a.exposure_ms < 0 || a.readout_ms < 0)
+    throw InputError("", "--exposure-ms", "exposure and readout times must be >= 0");
+  exposure.shutter.exposure_ns = static_cast<TimeNs>(a.exposure_ms * 1e6);
+  exposure.shutter.readout_ns = static_cast<TimeNs>(a.readout_ms * 1e6);
+  renderer.render(lens, exposure, opt, 0, f);
   ImageF img;
   if (has(pass, Pass::Rgb))
     img = f.rgb;
@@ -133,6 +146,13 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--denoise", a->denoise,
                 "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "
                 "(docs/denoise.md); trades a little bias for much less noise; off by default");
+  cmd->add_option("--camera-end", a->camera_end,
+                  "camera.json of the pose when the exposure ends (motion blur); the pose of "
+                  "--camera is where it starts");
+  cmd->add_option("--exposure-ms", a->exposure_ms, "exposure time of each row in ms (default 0)");
+  cmd->add_option(
+      "--readout-ms", a->readout_ms,
+      "rolling shutter: time from the first to the last row's start in ms (default 0 = global)");
   cmd->add_option("--out", a->out, "output image: .exr (linear float) or .png (sRGB 8-bit)")
       ->required();
   cmd->callback([a] { runRender(*a); });

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace inet {
 namespace {
@@ -35,7 +36,6 @@ void allocateInt(Image<T>& img, const CameraIntrinsics& K, bool on) {
 /// work is a handful of stores (this loop, not Embree, used to be a third of the frame time).
 struct PassWriter {
   const EmbreeScene& scene;
-  Eigen::Matrix3f R_camera_world;
   float* depth_z;
   float* depth_ray;
   float* normal;
@@ -55,15 +55,16 @@ struct PassWriter {
   /// t: ray parameter (= z-depth, the camera-frame direction has z = 1); d_len: |d_camera|.
   /// t: ray parameter; z_per_t: camera-frame z per unit t (1 for pinhole rays, whose direction
   /// has z = 1, so the z-depth is exactly t); d_len: |d_camera|.
+  /// R_cw: world-to-camera rotation of the pose this pixel was traced from.
   void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& d_world,
-           int object, const Vec3f& ng) const {
+           int object, const Vec3f& ng, const Eigen::Matrix3f& R_cw) const {
     const ObjectShading& s = scene.object(object);
     if (depth_z) depth_z[i] = z_per_t == 1.f ? t : std::max(0.f, t * z_per_t);
     if (depth_ray) depth_ray[i] = t * d_len;
     if (normal) {
       Vec3f n = s.normal_to_world * ng;
       if (n.dot(d_world) > 0) n = -n;  // face the camera
-      n = (R_camera_world * n).normalized();
+      n = (R_cw * n).normalized();
       normal[3 * i] = n.x();
       normal[3 * i + 1] = n.y();
       normal[3 * i + 2] = n.z();
@@ -86,7 +87,7 @@ T* dataOrNull(Image<T>& img) {
 }  // namespace
 
 void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Pose& T_world_camera,
-                       PassMask passes, Frame& frame) {
+                       PassMask passes, Frame& frame, const CameraExposure* exposure) {
   const CameraIntrinsics& K = lens.K;
   allocate(frame.depth_z, K, 1, has(passes, Pass::DepthZ));
   allocate(frame.depth_ray, K, 1, has(passes, Pass::DepthRay));
@@ -100,7 +101,6 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
   const Eigen::Matrix3f R_world_camera = T_world_camera.rotation().cast<float>();
   const Eigen::Vector3f origin = T_world_camera.t.cast<float>();
   PassWriter writer{scene,
-                    R_world_camera.transpose(),
                     dataOrNull(frame.depth_z),
                     dataOrNull(frame.depth_ray),
                     dataOrNull(frame.normal),
@@ -110,6 +110,19 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
   // Plain pinhole: the camera-frame direction through pixel centre (x, y) is
   // (ax*x + bx, ay*y + by, 1), computed incrementally. Other lenses ask generateRay.
   const bool simple = lens.type == LensType::Pinhole && !lens.hasDistortion();
+  const bool moving = exposure != nullptr && exposure->moving();
+  std::vector<Eigen::Matrix3f> row_R;  // per-row camera pose of a moving (rolling) exposure
+  std::vector<Eigen::Vector3f> row_t;
+  std::vector<Eigen::Matrix3f> row_Rt;  // their transposes (world to camera)
+  const Eigen::Matrix3f R_camera_world = R_world_camera.transpose();
+  if (moving) {
+    for (int y = 0; y < K.height; ++y) {
+      Pose p = exposure->groundTruthPose(y, K.height);
+      row_R.push_back(p.rotation().cast<float>());
+      row_Rt.push_back(row_R.back().transpose());
+      row_t.push_back(p.t.cast<float>());
+    }
+  }
   const float ax = static_cast<float>(1.0 / K.fx), bx = static_cast<float>((0.5 - K.cx) / K.fx);
   const float ay = static_cast<float>(1.0 / K.fy), by = static_cast<float>((0.5 - K.cy) / K.fy);
 
@@ -145,7 +158,9 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
               valid[k] = (inside && has_ray[k]) ? -1 : 0;
               d_len[k] = d_cam.norm();
               z_per_t[k] = simple ? 1.f : d_cam.z();
-              Eigen::Vector3f d = R_world_camera * d_cam, o = R_world_camera * o_cam + origin;
+              const Eigen::Matrix3f& Rr = moving && inside ? row_R[y] : R_world_camera;
+              const Eigen::Vector3f& tr = moving && inside ? row_t[y] : origin;
+              Eigen::Vector3f d = Rr * d_cam, o = Rr * o_cam + tr;
               rh.ray.org_x[k] = o.x();
               rh.ray.org_y[k] = o.y();
               rh.ray.org_z[k] = o.z();
@@ -169,7 +184,8 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
               int object = scene.objectOf(rh.hit.geomID[k], rh.hit.instID[0][k]);
               writer.hit(i, rh.ray.tfar[k], z_per_t[k], d_len[k],
                          Eigen::Vector3f(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]), object,
-                         Vec3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]));
+                         Vec3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),
+                         moving ? row_Rt[y] : R_camera_world);
             }
           }
         }

@@ -10,6 +10,7 @@
 #include "render/camera.h"
 #include "render/embree_scene.h"
 #include "render/frame.h"
+#include "render/integrator.h"
 #include "render/lens.h"
 
 namespace inet {
@@ -20,7 +21,9 @@ namespace inet {
 /// in-focus chief ray of a thin lens). `depth` is the camera-frame z of the hit (0 if behind the
 /// camera), `ray_depth` its distance from the ray origin; pixels without a ray (outside a
 /// fisheye circle) are 0 in every pass.
+/// With `exposure` (not null, moving), each row is traced from the pose at the middle of that
+/// row's exposure, so rolling-shutter ground truth matches the rolling-shutter image.
 void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Pose& T_world_camera,
-                       PassMask passes, Frame& frame);
+                       PassMask passes, Frame& frame, const CameraExposure* exposure = nullptr);
 
 }  // namespace inet

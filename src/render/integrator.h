@@ -13,6 +13,7 @@
 #include "render/denoise.h"
 #include "render/frame.h"
 #include "render/lens.h"
+#include "render/shutter.h"
 
 namespace inet {
 
@@ -37,11 +38,40 @@ struct RenderOptions {
   }();
 };
 
+/// How the camera moves while a frame is exposed: the pose when row 0 starts its exposure and
+/// the pose when the last row ends it, interpolated (linear position, slerp rotation) in
+/// between. A static camera has open == close and a zero shutter.
+struct CameraExposure {
+  Pose T_world_camera_open;
+  Pose T_world_camera_close;
+  Shutter shutter;  ///< exposure and rolling-shutter readout times
+
+  static CameraExposure fixed(const Pose& T_world_camera) {
+    return {T_world_camera, T_world_camera, {}};
+  }
+  bool moving() const {
+    return (shutter.exposure_ns > 0 || shutter.readout_ns > 0) &&
+           (T_world_camera_open.t != T_world_camera_close.t ||
+            !T_world_camera_open.q.isApprox(T_world_camera_close.q, 0.0));
+  }
+  /// Pose at `dt_ns` after the exposure of row 0 started.
+  Pose at(TimeNs dt_ns) const {
+    TimeNs span = shutter.readout_ns + shutter.exposure_ns;
+    if (span <= 0) return T_world_camera_open;
+    return interpolatePose(T_world_camera_open, 0, T_world_camera_close, span, dt_ns);
+  }
+  /// Pose for the ground truth of row `row` (the middle of that row's exposure).
+  Pose groundTruthPose(int row, int height) const {
+    return at(groundTruthTime(shutter, 0, row, height));
+  }
+};
+
 /// The inputs of one frame's render.
 struct RenderContext {
   const EmbreeScene& scene;
   const LensModel& lens;
-  const Pose& T_world_camera;
+  const Pose& T_world_camera;      ///< the pose of a static camera
+  const CameraExposure* exposure;  ///< motion blur / rolling shutter, or nullptr if static
   const RenderOptions& options;
   uint32_t frame_index;  ///< keys the RNG, so each frame gets its own independent samples
 };

@@ -61,6 +61,7 @@ class PathTracer final : public Integrator {
               ImageF* emission) const override {
     const CameraIntrinsics& K = ctx.lens.K;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
+    const bool moving = ctx.exposure != nullptr && ctx.exposure->moving();
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
@@ -77,8 +78,16 @@ class PathTracer final : public Integrator {
             CameraRay cr;
             if (!generateRay(ctx.lens, x + j.x(), y + j.y(), lens_uv, cr))
               continue;  // no ray: black
-            Vec3f o = R * cr.origin.cast<float>() + origin;
-            Vec3f d = R * cr.dir.cast<float>();
+            Eigen::Matrix3f Rs = R;
+            Vec3f origin_s = origin;
+            if (moving) {  // motion blur: this sample's time inside its row's exposure
+              TimeNs t = sampleTime(ctx.exposure->shutter, 0, y, K.height, smp.get1D());
+              Pose pose = ctx.exposure->at(t);
+              Rs = pose.rotation().cast<float>();
+              origin_s = pose.t.cast<float>();
+            }
+            Vec3f o = Rs * cr.origin.cast<float>() + origin_s;
+            Vec3f d = Rs * cr.dir.cast<float>();
             Vec3f le;
             Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp, le);
             sum += v;

@@ -12,14 +12,16 @@ Renderer::Renderer(const Scene& scene, const std::string& integrator)
 
 Renderer::~Renderer() = default;
 
-void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
+void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
                       const RenderOptions& options, uint32_t frame_index, Frame& frame) const {
   const CameraIntrinsics& K = lens.K;
-  inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes, frame);
+  const Pose& T_world_camera = exposure.T_world_camera_open;
+  const CameraExposure* moving = exposure.moving() ? &exposure : nullptr;
+  inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes, frame, moving);
   if (has(options.passes, Pass::Rgb)) {
     if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
       frame.rgb = ImageF(K.width, K.height, 3);
-    RenderContext ctx{*scene_, lens, T_world_camera, options, frame_index};
+    RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index};
     if (!options.denoise) {
       integrator_->render(ctx, frame.rgb, nullptr, nullptr);
     } else {
@@ -31,7 +33,7 @@ void Renderer::render(const LensModel& lens, const Pose& T_world_camera,
       Frame scratch;
       const Frame* g = &frame;
       if ((options.passes & guides) != guides) {
-        inet::renderGroundTruth(*scene_, lens, T_world_camera, guides, scratch);
+        inet::renderGroundTruth(*scene_, lens, T_world_camera, guides, scratch, moving);
         g = &scratch;
       }
       ImageF variance(K.width, K.height, 3), emission(K.width, K.height, 3);

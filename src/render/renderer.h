@@ -22,8 +22,14 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   /// Renders the passes in options.passes into `frame` (buffers are reused across calls).
-  void render(const LensModel& lens, const Pose& T_world_camera, const RenderOptions& options,
+  /// A moving `exposure` gives motion blur (and rolling shutter when its readout time is set) in
+  /// RGB; ground truth is traced per row from the pose at the middle of that row's exposure.
+  void render(const LensModel& lens, const CameraExposure& exposure, const RenderOptions& options,
               uint32_t frame_index, Frame& frame) const;
+  void render(const LensModel& lens, const Pose& T_world_camera, const RenderOptions& options,
+              uint32_t frame_index, Frame& frame) const {
+    render(lens, CameraExposure::fixed(T_world_camera), options, frame_index, frame);
+  }
   /// The same for a plain pinhole camera.
   void render(const CameraIntrinsics& K, const Pose& T_world_camera, const RenderOptions& options,
               uint32_t frame_index, Frame& frame) const {
