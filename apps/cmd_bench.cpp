@@ -73,8 +73,11 @@ void runBench(const BenchArgs& a) {
   RenderOptions opt;
   opt.spp = a.spp;
   opt.passes = static_cast<PassMask>(Pass::Rgb);
+  RenderStats stats;
+  renderer.setStats(&stats);
   renderer.render(K, cam.T_world_camera, opt, 0, frame);
   auto t5 = Clock::now();
+  renderer.setStats(nullptr);
 
   double gt_s = seconds(t3, t4), pt_s = seconds(t4, t5);
   out["width"] = K.width;
@@ -89,6 +92,8 @@ void runBench(const BenchArgs& a) {
   out["pt_spp"] = a.spp;
   out["pt_seconds"] = pt_s;
   out["pt_samples_per_s"] = static_cast<double>(K.width) * K.height * a.spp / pt_s;
+  out["pt_rays_per_s"] = static_cast<double>(stats.rays.load()) / pt_s;
+  out["pt_rays_per_sample"] = static_cast<double>(stats.rays.load()) / stats.samples.load();
   out["peak_rss_mb"] = peakRssMb();
   out["version"] = version();
   if (a.json) {
@@ -99,8 +104,9 @@ void runBench(const BenchArgs& a) {
                seconds(t1, t2) * 1e3, scene.triangleCount());
     fmt::print("ground truth     {:.1f} frames/s at {}x{} (6 passes, {} threads)\n",
                a.gt_frames / gt_s, K.width, K.height, limit.threads());
-    fmt::print("path tracing     {:.3f} Msamples/s ({} spp in {:.2f} s)\n",
-               K.width * K.height * a.spp / pt_s / 1e6, a.spp, pt_s);
+    fmt::print("path tracing     {:.3f} Msamples/s, {:.2f} Mrays/s ({} spp in {:.2f} s)\n",
+               K.width * K.height * a.spp / pt_s / 1e6, stats.rays.load() / pt_s / 1e6, a.spp,
+               pt_s);
     fmt::print("peak memory      {:.0f} MB\n", peakRssMb());
   }
 }

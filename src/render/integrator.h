@@ -2,6 +2,7 @@
 // The integrator interface (how the RGB pass is computed) and its registry. Issue 3 grows the
 // path tracer behind this interface; a new integrator is one .cpp plus one line in
 // integrator.cpp's table.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -66,6 +67,12 @@ struct CameraExposure {
   }
 };
 
+/// Work counters of a render (for `interiornet bench`); filled when a RenderContext points here.
+struct RenderStats {
+  std::atomic<uint64_t> rays{0};     ///< closest-hit plus shadow rays traced
+  std::atomic<uint64_t> samples{0};  ///< camera samples (paths)
+};
+
 /// The inputs of one frame's render.
 struct RenderContext {
   const EmbreeScene& scene;
@@ -74,6 +81,7 @@ struct RenderContext {
   const CameraExposure* exposure;  ///< motion blur / rolling shutter, or nullptr if static
   const RenderOptions& options;
   uint32_t frame_index;  ///< keys the RNG, so each frame gets its own independent samples
+  RenderStats* stats = nullptr;
 };
 
 class Integrator {

@@ -66,6 +66,7 @@ class PathTracer final : public Integrator {
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
     auto tile = [&](const tbb::blocked_range2d<int>& r) {
+      uint64_t tile_rays = 0;
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
           auto pixel = static_cast<uint32_t>(y * K.width + x);
@@ -89,7 +90,7 @@ class PathTracer final : public Integrator {
             Vec3f o = Rs * cr.origin.cast<float>() + origin_s;
             Vec3f d = Rs * cr.dir.cast<float>();
             Vec3f le;
-            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp, le);
+            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp, le, tile_rays);
             sum += v;
             sum_le += le;
             Vec3f reflected = v - le;  // the variance guide describes what gets filtered
@@ -108,8 +109,10 @@ class PathTracer final : public Integrator {
           }
         }
       }
+      if (ctx.stats) ctx.stats->rays += tile_rays;
     };
     tbb::parallel_for(tbb::blocked_range2d<int>(0, K.height, kTile, 0, K.width, kTile), tile);
+    if (ctx.stats) ctx.stats->samples += static_cast<uint64_t>(K.width) * K.height * spp;
   }
 
  private:
@@ -156,11 +159,13 @@ class PathTracer final : public Integrator {
 
   /// Radiance along a camera ray; `seen_emission` receives the part emitted by the first surface
   /// hit (directly visible lights), which the denoiser must leave alone.
-  Vec3f radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp, Vec3f& seen_emission) const;
+  /// `rays` counts the rays traced.
+  Vec3f radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp, Vec3f& seen_emission,
+                 uint64_t& rays) const;
 };
 
 Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
-                           Vec3f& seen_emission) const {
+                           Vec3f& seen_emission, uint64_t& rays) const {
   seen_emission = Vec3f::Zero();
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
@@ -170,6 +175,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
   float tnear = 0.f;
   for (int bounce = 0;; ++bounce) {
     RTCRayHit rh;
+    ++rays;
     if (!intersect(scene, ray, tnear, rh)) {
       float sun_pdf;
       Vec3f sun = scene.lights().sunRadiance(ray.d, sun_pdf);
@@ -234,6 +240,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
         Vec3f o = lambert ? p_face : offset(ls.wi);
         float tmax = std::isinf(ls.dist) ? std::numeric_limits<float>::infinity()
                                          : (lambert ? ls.dist : ls.dist - eps) * (1.f - 1e-4f);
+        ++rays;
         if (!occluded(scene, o, ls.wi, tmax)) {
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
           L += throughput.cwiseProduct(f_cos.cwiseProduct(ls.radiance)) * (w / ls.pdf);

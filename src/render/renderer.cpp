@@ -21,7 +21,7 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   if (has(options.passes, Pass::Rgb)) {
     if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
       frame.rgb = ImageF(K.width, K.height, 3);
-    RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index};
+    RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
     if (!options.denoise) {
       integrator_->render(ctx, frame.rgb, nullptr, nullptr);
     } else {

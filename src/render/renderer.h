@@ -42,12 +42,15 @@ class Renderer {
                          Frame& frame) const {
     renderGroundTruth(LensModel::pinhole(K), T_world_camera, passes, frame);
   }
+  /// Counts rays and samples of subsequent renders into `stats` (nullptr: stop counting).
+  void setStats(RenderStats* stats) { stats_ = stats; }
   double sceneBuildMs() const;
   size_t emissiveTriangleCount() const;
 
  private:
   std::unique_ptr<EmbreeScene> scene_;
   std::unique_ptr<Integrator> integrator_;
+  RenderStats* stats_ = nullptr;
 };
 
 }  // namespace inet
