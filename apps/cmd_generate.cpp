@@ -43,6 +43,7 @@ struct GenerateArgs {
   std::string out = "out";
   bool progress = true;
   bool denoise = false;
+  ResponseArgs response;
   CameraIntrinsics K;
   bool cx_set = false, cy_set = false;
 };
@@ -101,12 +102,14 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                  {"pixel_filter", "box, 1 pixel"},
                  {"rgb", "linear radiance -> clamp -> sRGB 8-bit"}};
   m["seed"] = opt.seed;
+  m["camera_response"] = a.response.describe();
   m["fps"] = a.fps;
   return m;
 }
 
 void runGenerate(const GenerateArgs& a) {
   validateArgs(a);
+  a.response.validate();
   ThreadLimit limit(a.threads);
   PassMask passes = parsePassList(a.passes, "generate");
   std::vector<std::string> formats = splitList(a.formats);
@@ -155,6 +158,8 @@ void runGenerate(const GenerateArgs& a) {
     }
     if (!writer.frameComplete(k)) {
       renderer.render(K, traj.poses[k].T_world_camera, opt, static_cast<uint32_t>(k), frame);
+      if (!a.response.identity() && has(passes, Pass::Rgb))
+        frame.rgb = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
       writer.writeFrame(k, frame);
     }
     bar.update(static_cast<int64_t>(++done));
@@ -204,6 +209,7 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--sequence", a->sequence, "sequence folder name (default seq_000)");
   cmd->add_option("--out", a->out,
                   "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
+  a->response.addTo(*cmd);
   cmd->add_flag("--denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered); off by default");

@@ -30,6 +30,7 @@ struct RenderArgs {
   double focus = 2.0;
   double fisheye_fov = 180.0;
   bool denoise = false;
+  ResponseArgs response;
   std::string camera_end;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
@@ -71,6 +72,7 @@ void runRender(const RenderArgs& a) {
     throw InputError("", "--camera", "required with --scene/--layout");
   }
   LensModel lens = makeLens(a, cam.intrinsics);
+  a.response.validate();
   ThreadLimit limit(a.threads);
   Scene scene = a.scene.load();
   Renderer renderer(scene);
@@ -110,7 +112,7 @@ void runRender(const RenderArgs& a) {
         img.channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Z"};
     writeExr(out, img, names);
   } else if (img.channels == 3 && !has(pass, Pass::Normal)) {
-    writePng(out, encodeSrgb8(img));
+    writePng(out, encodeSrgb8(has(pass, Pass::Rgb) ? a.response.apply(img, a.seed, 0) : img));
   } else if (has(pass, Pass::Normal)) {
     writePng(out, encodeNormal16(img));
   } else {
@@ -143,6 +145,7 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--focus", a->focus, "thin_lens focus distance in metres (default 2)");
   cmd->add_option("--fisheye-fov", a->fisheye_fov,
                   "fisheye field of view in degrees (default 180)");
+  a->response.addTo(*cmd);
   cmd->add_flag("--denoise", a->denoise,
                 "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "
                 "(docs/denoise.md); trades a little bias for much less noise; off by default");

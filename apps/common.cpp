@@ -3,10 +3,15 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <cmath>
 #include <cstdio>
+
+#include <fmt/format.h>
 #include <filesystem>
 
 #include "core/error.h"
+#include "render/sensor_noise.h"
+#include "render/tonemap.h"
 #include "scene/assimp_importer.h"
 #include "scene/default_scene.h"
 #include "scene/layout_json.h"
@@ -38,6 +43,37 @@ Scene SceneArgs::load() const {
   std::string warn = report.summary(opt.default_category);
   if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
   return s;
+}
+
+void ResponseArgs::addTo(CLI::App& cmd) {
+  cmd.add_option("--exposure-ev", exposure_ev,
+                 "exposure compensation of the RGB image in stops (default 0)");
+  cmd.add_option("--tone", tone,
+                 "tone curve before sRGB encoding: none (clip), aces, hable (default none)");
+  cmd.add_flag("--sensor-noise", sensor_noise,
+               "add shot and read noise of a CMOS sensor (Sony IMX250: 10.7 ke- full well, 1.8 e- "
+               "read noise, 12-bit ADC) to the RGB image; seeded, deterministic");
+}
+
+void ResponseArgs::validate() const {
+  if (!std::isfinite(exposure_ev) || std::abs(exposure_ev) > 30)
+    throw InputError("", "--exposure-ev", "must be within -30..30 stops");
+  parseToneCurve(tone, "", "--tone");
+}
+
+ImageF ResponseArgs::apply(const ImageF& linear, uint64_t seed, uint32_t frame) const {
+  CameraResponse r;
+  r.exposure_ev = exposure_ev;
+  ImageF img = applyExposure(linear, r.multiplier());
+  if (sensor_noise) img = applySensorNoise(img, SensorNoise{}, seed, frame);
+  r.exposure_ev = 0.f;
+  r.curve = parseToneCurve(tone, "", "--tone");
+  return applyExposureAndCurve(img, r);
+}
+
+std::string ResponseArgs::describe() const {
+  return fmt::format("exposure_ev={} tone={} sensor_noise={}", exposure_ev, tone,
+                     sensor_noise ? SensorNoise{}.describe() : std::string("off"));
 }
 
 struct ThreadLimit::Impl {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "core/image.h"
 #include "scene/scene.h"
 
 namespace inet::app {
@@ -21,6 +22,22 @@ struct SceneArgs {
   /// Loads the scene; prints the importer's warning summary once. Throws InputError.
   Scene load() const;
   bool isDefault() const { return path.empty(); }
+};
+
+/// The camera's response to light, applied to the path-traced RGB before 8-bit encoding:
+/// exposure, optional sensor noise (shot + read, IMX250 defaults), tone curve. EXR output and
+/// ground truth are never touched.
+struct ResponseArgs {
+  float exposure_ev = 0.f;
+  std::string tone = "none";
+  bool sensor_noise = false;
+  void addTo(CLI::App& cmd);
+  /// Validates the options (InputError naming the flag).
+  void validate() const;
+  bool identity() const { return exposure_ev == 0.f && tone == "none" && !sensor_noise; }
+  /// Linear RGB -> display-referred linear RGB in [0, 1] (then sRGB-encoded by the writers).
+  ImageF apply(const ImageF& linear, uint64_t seed, uint32_t frame) const;
+  std::string describe() const;
 };
 
 /// Limits TBB to n threads for the life of the object (n = 0: all cores).

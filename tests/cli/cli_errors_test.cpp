@@ -132,6 +132,8 @@ std::vector<Case> cases() {
       {"zero_spp", {}, "--spp 0", {"--spp"}},
       {"negative_threads", {}, "--threads -1", {"--threads"}},
       {"bad_width", {}, "--width 0", {"width"}},
+      {"unknown_tone_curve", {}, "--tone sepia", {"--tone", "sepia"}},
+      {"absurd_exposure", {}, "--exposure-ev 99", {"--exposure-ev"}},
       {"unwritable_output",
        {{"out", "I am a file, not a folder\n"}},
        "--frames 1 --out {D}/out",

@@ -106,6 +106,31 @@ TEST(Generate, OneAndTwoThreadsGiveIdenticalBytes) {
   EXPECT_EQ(differing, 3) << "another seed must give other noise";
 }
 
+// The camera response (exposure, tone curve, sensor noise) changes the colour images only: every
+// ground-truth file stays byte for byte the same.
+TEST(Generate, CameraResponseTouchesColourOnly) {
+  TempDir dir("gen_response");
+  std::string common = kSmall + "--frames 2 --spp 4 ";
+  RunResult a = runInterinet(common + "--out " + (dir / "a").string());
+  RunResult b = runInterinet(common + "--tone aces --exposure-ev 1 --sensor-noise --out " +
+                             (dir / "b").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  auto ta = readTree(seqDir(dir / "a")), tb = readTree(seqDir(dir / "b"));
+  ASSERT_EQ(ta.size(), tb.size());
+  int colour_differs = 0;
+  for (const auto& [name, bytes] : ta) {
+    bool colour = name.find("cam0/data/") != std::string::npos || name.rfind("rgb/", 0) == 0;
+    if (colour) {
+      colour_differs += tb[name] != bytes;
+    } else if (name != "meta.json") {
+      EXPECT_TRUE(tb[name] == bytes) << name << " changed";
+    }
+  }
+  EXPECT_EQ(colour_differs, 4);  // 2 frames x (cam0 + TUM rgb)
+  EXPECT_NE(tb["meta.json"].find("aces"), std::string::npos);
+}
+
 pid_t spawn(const std::string& args) {
   pid_t pid = fork();
   if (pid == 0) {
