@@ -135,7 +135,7 @@ void registerRender(CLI::App& app) {
                   "maximum scattering events per path (default 8)");
   cmd->add_option("--seed", a->seed, "random seed (default 0)");
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
-  cmd->add_option("--pass", a->pass,
+  cmd->add_option("--pass,--passes", a->pass,
                   "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
   cmd->add_option(
       "--lens", a->lens,
