@@ -58,17 +58,22 @@ inline uint32_t sobol1Slow(uint32_t i) {
 }
 
 /// The same, by table: the generator is linear over GF(2), so the index is taken a byte at a time.
-inline uint32_t sobol1(uint32_t i) {
+/// With `reversed`, the result comes bit-reversed (bit reversal is linear too), which is the form
+/// Owen scrambling works on.
+inline uint32_t sobol1(uint32_t i, bool reversed = false) {
   struct Tables {
-    uint32_t t[4][256];
+    uint32_t t[2][4][256];
     Tables() {
       for (int b = 0; b < 4; ++b)
-        for (uint32_t v = 0; v < 256; ++v) t[b][v] = sobol1Slow(v << (8 * b));
+        for (uint32_t v = 0; v < 256; ++v) {
+          t[0][b][v] = sobol1Slow(v << (8 * b));
+          t[1][b][v] = reverseBits(t[0][b][v]);
+        }
     }
   };
   static const Tables tables;
-  return tables.t[0][i & 0xff] ^ tables.t[1][(i >> 8) & 0xff] ^ tables.t[2][(i >> 16) & 0xff] ^
-         tables.t[3][i >> 24];
+  const auto& t = tables.t[reversed ? 1 : 0];
+  return t[0][i & 0xff] ^ t[1][(i >> 8) & 0xff] ^ t[2][(i >> 16) & 0xff] ^ t[3][i >> 24];
 }
 
 /// 32-bit hash of four words (a murmur3-style finaliser over a splitmix combination).
@@ -96,6 +101,7 @@ class PixelSampler {
         pixel_(pixel),
         index_(sample_index),
         index_mask_(blockMask(spp)),
+        index_reversed_(sobol_detail::reverseBits(sample_index)),
         rng_(seed, RngStream::PathTracer, frame, pixel, sample_index) {}
 
   /// The next 2D sample in [0,1)^2.
@@ -106,10 +112,12 @@ class PixelSampler {
     // Shuffle the sample index within its power-of-two block. Owen scrambling maps a block with
     // fixed high bits onto a block with fixed high bits, so only the low bits matter; dropping
     // the constant high part is a digital shift of the net, absorbed by the scrambles below.
-    uint32_t i = owenScramble(index_, h) & index_mask_;
+    // (owenScramble(index_, h), with the index's reversal done once in the constructor)
+    uint32_t i = reverseBits(laineKarras(index_reversed_, h)) & index_mask_;
     // owenScramble(sobol0(i)) == reverseBits(laineKarras(i)): dimension 0 is i bit-reversed
     uint32_t x = reverseBits(laineKarras(i, h * 0x68bc21ebu + 1u));
-    uint32_t y = owenScramble(sobol1(i), h * 0x02e5be93u + 2u);
+    // owenScramble(sobol1(i)) with sobol1's table already bit-reversed
+    uint32_t y = reverseBits(laineKarras(sobol1(i, true), h * 0x02e5be93u + 2u));
     return {toUnit(x), toUnit(y)};
   }
   /// The next 1D sample in [0, 1) (stratified: the first coordinate of a fresh pair).
@@ -124,7 +132,7 @@ class PixelSampler {
   static float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
   uint64_t seed_;
-  uint32_t frame_, pixel_, index_, index_mask_;
+  uint32_t frame_, pixel_, index_, index_mask_, index_reversed_;
   uint32_t pair_ = 0;
   CounterRng rng_;
 };

@@ -62,8 +62,11 @@ TEST(PixelSampler, PairsAndPixelsAreDecorrelated) {
 }
 
 TEST(PixelSampler, TableSobolEqualsBitwise) {
-  for (uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 65535u, 123456789u, 0xffffffffu})
+  for (uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 65535u, 123456789u, 0xffffffffu}) {
     EXPECT_EQ(sobol_detail::sobol1(i), sobol_detail::sobol1Slow(i)) << i;
+    EXPECT_EQ(sobol_detail::sobol1(i, true),
+              sobol_detail::reverseBits(sobol_detail::sobol1Slow(i)));
+  }
   // the first points of Sobol dimension 1 are 0, 1/2, 3/4, 1/4
   EXPECT_EQ(sobol_detail::sobol1(1), 0x80000000u);
   EXPECT_EQ(sobol_detail::sobol1(2), 0xc0000000u);
