@@ -46,20 +46,36 @@ struct CameraExposure {
   Pose T_world_camera_open;
   Pose T_world_camera_close;
   Shutter shutter;  ///< exposure and rolling-shutter readout times
+  /// Optional poses inside the window (time since the window opened, pose), sorted, e.g. the
+  /// trajectory's own samples; `at` then interpolates piecewise through open, these, close.
+  std::vector<std::pair<TimeNs, Pose>> knots;
 
   static CameraExposure fixed(const Pose& T_world_camera) {
-    return {T_world_camera, T_world_camera, {}};
+    return {T_world_camera, T_world_camera, {}, {}};
   }
+  TimeNs span() const { return shutter.readout_ns + shutter.exposure_ns; }
   bool moving() const {
-    return (shutter.exposure_ns > 0 || shutter.readout_ns > 0) &&
-           (T_world_camera_open.t != T_world_camera_close.t ||
-            !T_world_camera_open.q.isApprox(T_world_camera_close.q, 0.0));
+    if (span() <= 0) return false;
+    auto same = [&](const Pose& p) {
+      return p.t == T_world_camera_open.t && p.q.coeffs() == T_world_camera_open.q.coeffs();
+    };
+    if (!same(T_world_camera_close)) return true;
+    for (const auto& k : knots)
+      if (!same(k.second)) return true;
+    return false;
   }
   /// Pose at `dt_ns` after the exposure of row 0 started.
   Pose at(TimeNs dt_ns) const {
-    TimeNs span = shutter.readout_ns + shutter.exposure_ns;
-    if (span <= 0) return T_world_camera_open;
-    return interpolatePose(T_world_camera_open, 0, T_world_camera_close, span, dt_ns);
+    if (span() <= 0) return T_world_camera_open;
+    TimeNs t0 = 0;
+    Pose p0 = T_world_camera_open;
+    for (const auto& [tk, pk] : knots) {
+      if (dt_ns <= tk) return tk == t0 ? pk : interpolatePose(p0, t0, pk, tk, dt_ns);
+      t0 = tk;
+      p0 = pk;
+    }
+    return span() == t0 ? T_world_camera_close
+                        : interpolatePose(p0, t0, T_world_camera_close, span(), dt_ns);
   }
   /// Pose for the ground truth of row `row` (the middle of that row's exposure).
   Pose groundTruthPose(int row, int height) const {

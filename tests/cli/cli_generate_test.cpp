@@ -131,6 +131,37 @@ TEST(Generate, CameraResponseTouchesColourOnly) {
   EXPECT_NE(tb["meta.json"].find("aces"), std::string::npos);
 }
 
+// A global shutter with an exposure blurs the colour image, but the ground truth is traced at the
+// middle of the exposure, which is the frame's timestamp: identical to a static camera's.
+TEST(Generate, MotionBlurKeepsGroundTruthAtTheTimestamp) {
+  TempDir dir("gen_blur");
+  std::string common = kSmall + "--frames 3 --spp 4 ";
+  RunResult a = runInterinet(common + "--out " + (dir / "a").string());
+  RunResult b = runInterinet(common + "--exposure-ms 30 --out " + (dir / "b").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  auto ta = readTree(seqDir(dir / "a")), tb = readTree(seqDir(dir / "b"));
+  int colour_differs = 0;
+  for (const auto& [name, bytes] : ta) {
+    bool colour = name.find("cam0/data/") != std::string::npos || name.rfind("rgb/", 0) == 0;
+    if (colour) colour_differs += tb[name] != bytes;
+    if (name.find("depth0/data/") != std::string::npos ||
+        name.find("label0/data/") != std::string::npos ||
+        name.find("normal0/data/") != std::string::npos) {
+      EXPECT_TRUE(tb[name] == bytes) << name << " changed";
+    }
+  }
+  EXPECT_EQ(colour_differs, 6) << "every colour image is blurred";
+  // a rolling shutter moves rows of the ground truth
+  RunResult c = runInterinet(common + "--readout-ms 30 --out " + (dir / "c").string());
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  auto tc = readTree(seqDir(dir / "c"));
+  int depth_differs = 0;
+  for (const auto& [name, bytes] : ta)
+    if (name.find("depth0/data/") != std::string::npos) depth_differs += tc[name] != bytes;
+  EXPECT_EQ(depth_differs, 6);  // 3 frames x (PNG + EXR)
+}
+
 pid_t spawn(const std::string& args) {
   pid_t pid = fork();
   if (pid == 0) {
