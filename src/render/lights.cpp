@@ -1,5 +1,7 @@
 #include "render/lights.h"
 
+#include "render/bsdf.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,15 +19,6 @@ float smoothstep(float a, float b, float x) {
   if (a >= b) return x >= b ? 1.f : 0.f;
   float t = std::clamp((x - a) / (b - a), 0.f, 1.f);
   return t * t * (3.f - 2.f * t);
-}
-
-/// Orthonormal basis around unit n (Duff et al. 2017).
-void basis(const Vec3f& n, Vec3f& t, Vec3f& b) {
-  float sign = std::copysign(1.0f, n.z());
-  float a = -1.0f / (sign + n.z());
-  float bb = n.x() * n.y() * a;
-  t = Vec3f(1.0f + sign * n.x() * n.x() * a, sign * bb, -sign * n.x());
-  b = Vec3f(bb, sign + n.y() * n.y() * a, -n.y());
 }
 
 }  // namespace
@@ -113,10 +106,10 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
     float cos_t = 1.f - u.x() * (1.f - a.cos_max);
     float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
     float phi = 2.f * kPi * u.y();
-    Vec3f axis = -a.direction, t, b;
-    basis(axis, t, b);
+    const Vec3f axis = -a.direction;
+    const Frame3 f = Frame3::fromNormal(axis);
     out.wi =
-        (t * (sin_t * std::cos(phi)) + b * (sin_t * std::sin(phi)) + axis * cos_t).normalized();
+        (f.s * (sin_t * std::cos(phi)) + f.t * (sin_t * std::sin(phi)) + axis * cos_t).normalized();
     out.dist = std::numeric_limits<float>::infinity();
     out.radiance = a.rgb * a.radiance_scale;
     out.pdf = 1.f / (2.f * kPi * (1.f - a.cos_max));

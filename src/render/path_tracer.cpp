@@ -28,21 +28,11 @@ struct Ray {
   Vec3f o, d;  // d unit length
 };
 
-/// Builds an orthonormal basis around unit n (Duff et al. 2017, branchless).
-void basis(const Vec3f& n, Vec3f& t, Vec3f& b) {
-  float sign = std::copysign(1.0f, n.z());
-  float a = -1.0f / (sign + n.z());
-  float bb = n.x() * n.y() * a;
-  t = Vec3f(1.0f + sign * n.x() * n.x() * a, sign * bb, -sign * n.x());
-  b = Vec3f(bb, sign + n.y() * n.y() * a, -n.y());
-}
-
 Vec3f cosineHemisphere(const Vec3f& n, float u1, float u2) {
   float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-  Vec3f t, b;
-  basis(n, t, b);
+  const Frame3 f = Frame3::fromNormal(n);
   float z = std::sqrt(std::max(0.0f, 1.0f - u1));
-  return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z).normalized();
+  return (f.s * (r * std::cos(phi)) + f.t * (r * std::sin(phi)) + n * z).normalized();
 }
 
 float powerHeuristic(float a, float b) {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "dataset/image_io.h"
@@ -54,38 +55,55 @@ double regionMean(const ImageF& img, int x0, int y0, int w, int h) {
   return sum / (3.0 * w * h);
 }
 
-TEST(CornellBox, AgreesWithCyclesReference) {
-  fs::path shared = fs::path(INET_SHARED_DIR) / "data/scenes/cornell_box_mcguire";
-  if (!fs::exists(shared / "CornellBox-Original.obj"))
-    GTEST_SKIP() << "../shared/data/scenes/cornell_box_mcguire not found";
-  fs::path obj = correctedCornellBox(shared);
-  fs::path src(INET_SOURCE_DIR);
-  ImageF ref = readExr(src / "tests/golden/cornell_cycles_4096spp.exr", {"R", "G", "B"});
-  CameraFile cam = loadCameraJson((src / "tests/data/render/cornell_camera.json").string());
-  ASSERT_EQ(ref.width, cam.intrinsics.width);
+/// The corrected box, the Cycles reference and the camera; skips without ../shared.
+class CornellBox : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::path shared = fs::path(INET_SHARED_DIR) / "data/scenes/cornell_box_mcguire";
+    if (!fs::exists(shared / "CornellBox-Original.obj"))
+      GTEST_SKIP() << "../shared/data/scenes/cornell_box_mcguire not found";
+    obj_ = correctedCornellBox(shared);
+    fs::path src(INET_SOURCE_DIR);
+    ref_ = readExr(src / "tests/golden/cornell_cycles_4096spp.exr", {"R", "G", "B"});
+    cam_ = loadCameraJson((src / "tests/data/render/cornell_camera.json").string());
+    ASSERT_EQ(ref_.width, cam_.intrinsics.width);
+    // keep the OBJ's own frame (Y up), as the reference did
+    renderer_ = std::make_unique<Renderer>(importMeshScene(obj_.string(), ImportOptions{}));
+  }
+  void TearDown() override {
+    if (!obj_.empty()) fs::remove_all(obj_.parent_path());
+  }
+  ImageF render(int spp, bool denoise) {
+    RenderOptions ro;
+    ro.spp = spp;
+    ro.max_bounces = 8;
+    ro.passes = static_cast<PassMask>(Pass::Rgb);
+    ro.denoise = denoise;
+    Frame f;
+    renderer_->render(cam_.intrinsics, cam_.T_world_camera, ro, 0, f);
+    EXPECT_TRUE(f.label.empty()) << "ground truth was not asked for and must not appear";
+    return f.rgb;
+  }
 
-  ImportOptions opt;  // keep the OBJ's own frame (Y up), as the reference did
-  Scene scene = importMeshScene(obj.string(), opt);
-  Renderer renderer(scene);
-  RenderOptions ro;
-  ro.spp = 256;
-  ro.max_bounces = 8;
-  ro.passes = static_cast<PassMask>(Pass::Rgb);
-  Frame f;
-  renderer.render(cam.intrinsics, cam.T_world_camera, ro, 0, f);
+  fs::path obj_;
+  ImageF ref_;
+  CameraFile cam_;
+  std::unique_ptr<Renderer> renderer_;
+};
 
-  const int W = ref.width, H = ref.height;
-  double ours = regionMean(f.rgb, 0, 0, W, H), theirs = regionMean(ref, 0, 0, W, H);
+TEST_F(CornellBox, AgreesWithCyclesReference) {
+  ImageF img = render(256, false);
+  const int W = ref_.width, H = ref_.height;
+  double ours = regionMean(img, 0, 0, W, H), theirs = regionMean(ref_, 0, 0, W, H);
   EXPECT_NEAR(ours / theirs, 1.0, 0.01) << "image mean " << ours << " vs Cycles " << theirs;
   const int n = 4;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      double a = regionMean(f.rgb, i * W / n, j * H / n, W / n, H / n);
-      double b = regionMean(ref, i * W / n, j * H / n, W / n, H / n);
+      double a = regionMean(img, i * W / n, j * H / n, W / n, H / n);
+      double b = regionMean(ref_, i * W / n, j * H / n, W / n, H / n);
       EXPECT_NEAR(a / b, 1.0, 0.03)
           << "region (" << i << ", " << j << "): " << a << " vs Cycles " << b;
     }
-  fs::remove_all(obj.parent_path());
 }
 
 /// RMSE over the pixels that do not see the light (reference below 1): the denoiser leaves
@@ -103,28 +121,12 @@ double rmseOfLitSurfaces(const ImageF& a, const ImageF& ref) {
 
 // The denoiser on a real render: at 16 spp it must cut the error against the 4096-spp Cycles
 // image well below the raw render's, without moving the mean.
-TEST(CornellBox, DenoisingLowersTheErrorNotTheMean) {
-  fs::path shared = fs::path(INET_SHARED_DIR) / "data/scenes/cornell_box_mcguire";
-  if (!fs::exists(shared / "CornellBox-Original.obj"))
-    GTEST_SKIP() << "../shared/data/scenes/cornell_box_mcguire not found";
-  fs::path obj = correctedCornellBox(shared);
-  fs::path src(INET_SOURCE_DIR);
-  ImageF ref = readExr(src / "tests/golden/cornell_cycles_4096spp.exr", {"R", "G", "B"});
-  CameraFile cam = loadCameraJson((src / "tests/data/render/cornell_camera.json").string());
-  Renderer renderer(importMeshScene(obj.string(), ImportOptions{}));
-  RenderOptions ro;
-  ro.spp = 16;
-  ro.passes = static_cast<PassMask>(Pass::Rgb);
-  Frame raw, den;
-  renderer.render(cam.intrinsics, cam.T_world_camera, ro, 0, raw);
-  ro.denoise = true;
-  renderer.render(cam.intrinsics, cam.T_world_camera, ro, 0, den);
-  const int W = ref.width, H = ref.height;
-  double e_raw = rmseOfLitSurfaces(raw.rgb, ref), e_den = rmseOfLitSurfaces(den.rgb, ref);
+TEST_F(CornellBox, DenoisingLowersTheErrorNotTheMean) {
+  ImageF raw = render(16, false), den = render(16, true);
+  double e_raw = rmseOfLitSurfaces(raw, ref_), e_den = rmseOfLitSurfaces(den, ref_);
   EXPECT_LT(e_den, 0.6 * e_raw) << "raw " << e_raw << " denoised " << e_den;
-  EXPECT_NEAR(regionMean(den.rgb, 0, 0, W, H) / regionMean(ref, 0, 0, W, H), 1.0, 0.01);
-  EXPECT_TRUE(den.label.empty()) << "ground truth was not asked for and must not appear";
-  fs::remove_all(obj.parent_path());
+  const int W = ref_.width, H = ref_.height;
+  EXPECT_NEAR(regionMean(den, 0, 0, W, H) / regionMean(ref_, 0, 0, W, H), 1.0, 0.01);
 }
 
 }  // namespace
