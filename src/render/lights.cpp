@@ -44,6 +44,9 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
       a.cos_outer = std::cos(l.cone_deg * kPi / 180.f);
       a.cos_inner = std::cos((l.cone_deg - l.falloff_deg) * kPi / 180.f);
       p *= 2.0 * M_PI * (1.0 - 0.5 * (a.cos_outer + a.cos_inner));
+    } else if (l.type == LightType::Sky) {
+      // radiance L from the whole sphere: power ~ pi L x the area of the scene's bounding sphere
+      p *= 4.0 * M_PI * M_PI * scene_radius * scene_radius;
     } else {
       float half = 0.5f * l.angular_diameter_deg * kPi / 180.f;
       a.cos_max = std::cos(half);
@@ -101,6 +104,17 @@ bool SceneLights::sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u,
 
 bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                                  LightSample& out) const {
+  if (a.type == LightType::Sky) {
+    // uniform direction on the sphere
+    float z = 1.f - 2.f * u.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
+    float phi = 2.f * kPi * u.y();
+    out.wi = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+    out.dist = std::numeric_limits<float>::infinity();
+    out.radiance = a.rgb;
+    out.pdf = 1.f / (4.f * kPi);
+    out.delta = false;
+    return true;
+  }
   if (a.type == LightType::Sun) {
     // uniform direction inside the cone of the sun's disk, around -direction
     float cos_t = 1.f - u.x() * (1.f - a.cos_max);
@@ -138,11 +152,16 @@ float SceneLights::trianglePdf(size_t i, float dist, float cos_light) const {
   return pmf_[i] / triangles_[i].area * dist * dist / cos_light;
 }
 
-Vec3f SceneLights::sunRadiance(const Vec3f& d, float& pdf) const {
+Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
   Vec3f L = Vec3f::Zero();
   pdf = 0.f;
   for (size_t k = 0; k < analytic_.size(); ++k) {
     const Analytic& a = analytic_[k];
+    if (a.type == LightType::Sky) {
+      L += a.rgb;
+      pdf += pmf_[triangles_.size() + k] / (4.f * kPi);
+      continue;
+    }
     if (a.type != LightType::Sun || -a.direction.dot(d) < a.cos_max) continue;
     L += a.rgb * a.radiance_scale;
     pdf += pmf_[triangles_.size() + k] / (2.f * kPi * (1.f - a.cos_max));

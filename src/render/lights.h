@@ -44,9 +44,9 @@ class SceneLights {
   /// pdf (pick x solid angle) with which `sample` would choose the point of triangle i seen at
   /// distance dist with cosine cos_light between its normal and the direction to the receiver.
   float trianglePdf(size_t i, float dist, float cos_light) const;
-  /// Radiance of the sun(s) seen along unit direction d (0 if none covers d), and the pdf with
-  /// which `sample` would have chosen that direction.
-  Vec3f sunRadiance(const Vec3f& d, float& pdf) const;
+  /// Radiance arriving from infinity along unit direction d (suns whose disk covers d, plus the
+  /// sky), and the pdf with which `sample` would have chosen that direction.
+  Vec3f environmentRadiance(const Vec3f& d, float& pdf) const;
 
  private:
   struct Analytic {

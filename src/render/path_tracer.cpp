@@ -168,7 +168,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
     ++rays;
     if (!intersect(scene, ray, tnear, rh)) {
       float sun_pdf;
-      Vec3f sun = scene.lights().sunRadiance(ray.d, sun_pdf);
+      Vec3f sun = scene.lights().environmentRadiance(ray.d, sun_pdf);
       if (sun_pdf > 0.f) {
         float w = (from_camera || prev_delta) ? 1.f : powerHeuristic(prev_bsdf_pdf, sun_pdf);
         L += w * throughput.cwiseProduct(sun);

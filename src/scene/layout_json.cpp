@@ -380,8 +380,11 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
   } else if (type == "sun") {
     l.type = LightType::Sun;
     r.object(j, field, {"name", "type", "direction", "intensity"}, keys({"angular_diameter_deg"}));
+  } else if (type == "sky") {
+    l.type = LightType::Sky;
+    r.object(j, field, {"name", "type", "intensity"}, keys({}));
   } else {
-    r.fail(dot(field, "type"), "unknown light type '" + type + "' (valid: point, spot, sun)");
+    r.fail(dot(field, "type"), "unknown light type '" + type + "' (valid: point, spot, sun, sky)");
   }
   l.name = r.string(j["name"], dot(field, "name"));
   if (j.contains("position")) l.position = r.vec3(j["position"], dot(field, "position"));
@@ -484,8 +487,10 @@ ojson lightToJson(const Light& l) {
   ojson j;
   j["name"] = l.name;
   j["type"] = lightTypeName(l.type);
-  if (l.type != LightType::Sun) j["position"] = jsonArray(l.position);
-  if (l.type != LightType::Point) j["direction"] = jsonArray(l.direction);
+  const bool directional = l.type == LightType::Sun || l.type == LightType::Sky;
+  if (!directional) j["position"] = jsonArray(l.position);
+  if (l.type == LightType::Spot || l.type == LightType::Sun)
+    j["direction"] = jsonArray(l.direction);
   j["intensity"] = jsonNumber(l.intensity);
   j["color"] = jsonArray(l.color);
   j["temperature_k"] = jsonNumber(l.temperature_k);
@@ -494,7 +499,7 @@ ojson lightToJson(const Light& l) {
     j["falloff_deg"] = jsonNumber(l.falloff_deg);
   }
   if (l.type == LightType::Sun) j["angular_diameter_deg"] = jsonNumber(l.angular_diameter_deg);
-  if (l.type != LightType::Sun) j["max_distance"] = jsonNumber(l.max_distance);
+  if (!directional) j["max_distance"] = jsonNumber(l.max_distance);
   j["on"] = l.on;
   return j;
 }

@@ -48,6 +48,8 @@ const char* lightTypeName(LightType t) {
       return "spot";
     case LightType::Sun:
       return "sun";
+    case LightType::Sky:
+      return "sky";
   }
   return "?";
 }
@@ -137,7 +139,8 @@ void Scene::validate(const std::string& where) const {
     if (l.temperature_k != 0.f && !(l.temperature_k >= 1000.f && l.temperature_k <= 40000.f))
       throw InputError(where, field + ".temperature_k",
                        "must be 0 (use color) or in 1000..40000 K");
-    if (l.type != LightType::Point && std::abs(l.direction.norm() - 1.0) > 1e-6)
+    if ((l.type == LightType::Spot || l.type == LightType::Sun) &&
+        std::abs(l.direction.norm() - 1.0) > 1e-6)
       throw InputError(where, field + ".direction", "must be a unit vector");
     if (l.type == LightType::Spot && !(l.cone_deg > 0.f && l.cone_deg < 90.f &&
                                        l.falloff_deg >= 0.f && l.falloff_deg <= l.cone_deg))

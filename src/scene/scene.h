@@ -75,11 +75,13 @@ struct Object {
 };
 
 /// Analytic lights (area lights are emissive materials on geometry).
-enum class LightType { Point, Spot, Sun };
+enum class LightType { Point, Spot, Sun, Sky };
 
-/// A light that is not geometry: isotropic point, spot (cone with a smooth edge), or sun (a
-/// distant disk). Radiometric units: point and spot `intensity` is radiant intensity in W/sr
-/// along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing it.
+/// A light that is not geometry: isotropic point, spot (cone with a smooth edge), sun (a
+/// distant disk) or sky (uniform radiance from every direction no geometry blocks, i.e. seen
+/// through windows and openings). Radiometric units: point and spot `intensity` is radiant
+/// intensity in W/sr along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing
+/// it; sky `intensity` is radiance in W sr^-1 m^-2.
 struct Light {
   std::string name;
   LightType type = LightType::Point;
@@ -98,7 +100,7 @@ struct Light {
   Vec3f rgbIntensity() const;
 };
 
-/// Names of light types as written in layout files ("point", "spot", "sun").
+/// Names of light types as written in layout files ("point", "spot", "sun", "sky").
 const char* lightTypeName(LightType t);
 
 struct Scene {

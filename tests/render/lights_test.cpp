@@ -144,3 +144,21 @@ TEST(Blackbody, WhitePointAndWarmLight) {
 
 }  // namespace
 }  // namespace inet
+
+namespace inet {
+namespace {
+
+// A uniform sky of radiance L over an unoccluded Lambertian floor: E = pi L from the upper
+// hemisphere, so the floor's radiance is a L (the lower hemisphere is hidden by the floor).
+TEST(Lights, UniformSkyOverAFloor) {
+  Scene s = floorScene();
+  Light sky;
+  sky.name = "sky";
+  sky.type = LightType::Sky;
+  sky.intensity = 0.7f;
+  s.lights = {sky};
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 4096), kAlbedo * 0.7, 0.01 * kAlbedo * 0.7);
+}
+
+}  // namespace
+}  // namespace inet

@@ -71,7 +71,8 @@ TEST(LayoutJson, LoadsTheFixture) {
   EXPECT_EQ(s.materials[6].type, MaterialType::ThinDielectric);
   EXPECT_EQ(s.materials[7].type, MaterialType::Translucent);
   EXPECT_EQ(s.materials[7].transmittance, Vec3f(0.3f, 0.3f, 0.25f));
-  ASSERT_EQ(s.lights.size(), 3u);
+  ASSERT_EQ(s.lights.size(), 4u);
+  EXPECT_EQ(s.lights[3].type, LightType::Sky);
   EXPECT_EQ(s.lights[0].position, Vec3(2.5, 2.0, 2.4));
   EXPECT_EQ(s.lights[0].type, LightType::Point);
   EXPECT_EQ(s.lights[1].type, LightType::Spot);
@@ -403,7 +404,7 @@ std::vector<BadLayout> objectCases() {
       {"light_unknown_key", edited([](json& j) { j["lights"][0]["radius"] = 0.1; }),
        "lights[0].radius", "valid keys here: name, type, position, intensity"},
       {"light_unknown_type", edited([](json& j) { j["lights"][0]["type"] = "laser"; }),
-       "lights[0].type", "valid: point, spot, sun"},
+       "lights[0].type", "valid: point, spot, sun, sky"},
       {"light_cold_temperature", edited([](json& j) { j["lights"][0]["temperature_k"] = 10; }),
        "temperature_k", "1000..40000"},
       {"spot_without_cone", edited([](json& j) {
