@@ -240,7 +240,7 @@ void registerGenerate(CLI::App& app) {
                   "worker threads, 0 = all cores (default 0); never changes the output");
   cmd->add_option(
       "--passes", a->passes,
-      "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, or all (default all)");
+      "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, shading, or all (default all)");
   cmd->add_option("--format", a->formats,
                   "comma list of output layouts: asl, tum (default asl,tum)");
   cmd->add_option("--width", a->K.width, "image width in pixels (default 640)");

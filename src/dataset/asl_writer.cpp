@@ -30,6 +30,9 @@ constexpr AslSensor kImageSensors[] = {
      "interiornet normal0, registered to cam0. Unit surface normal in the camera frame (x right, "
      "y down, z forward) as 16-bit RGB, code = round((n + 1) / 2 * 65535), (0, 0, 0) = none"},
     {"albedo0", "interiornet albedo0, registered to cam0. Diffuse albedo, 8-bit sRGB RGB PNG"},
+    {"shading0",
+     "interiornet shading0, registered to cam0. Illumination only (cam0 linear RGB / albedo), "
+     "8-bit sRGB RGB PNG, clipped at 1"},
     {"label0",
      "interiornet label0, registered to cam0. <t>_nyu.png NYU40 class id (8-bit, 0 = void), "
      "<t>_instance.png instance id (16-bit, 0 = none); never anti-aliased"},
@@ -71,6 +74,7 @@ class AslWriter final : public FormatWriter {
     addOutput("depth0/data", ".exr", floatExr(Pass::DepthRay, {"Z"}));
     addOutput("normal0/data", ".png", normalPng(Pass::Normal));
     addOutput("albedo0/data", ".png", srgbPng(Pass::Albedo));
+    addOutput("shading0/data", ".png", srgbPng(Pass::Shading));
     addOutput("label0/data", "_nyu.png", rawPng(Pass::Label));
     addOutput("label0/data", "_instance.png", rawPng(Pass::Instance));
   }

@@ -40,6 +40,8 @@ const ImageF Frame::*floatMember(Pass pass) {
       return &Frame::normal;
     case Pass::Albedo:
       return &Frame::albedo;
+    case Pass::Shading:
+      return &Frame::shading;
     default:
       break;
   }

@@ -22,7 +22,7 @@ namespace inet {
 namespace {
 
 constexpr Pass kAllPassList[] = {Pass::Rgb,   Pass::DepthZ,   Pass::DepthRay, Pass::Normal,
-                                 Pass::Label, Pass::Instance, Pass::Albedo};
+                                 Pass::Label, Pass::Instance, Pass::Albedo,   Pass::Shading};
 
 void validateTrajectory(const Trajectory& traj) {
   if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
@@ -78,6 +78,7 @@ void checkFrame(const Frame& f, PassMask mask, const CameraIntrinsics& K, size_t
   if (has(mask, Pass::Label)) checkImage(f.label, Pass::Label, 1, K, k);
   if (has(mask, Pass::Instance)) checkImage(f.instance, Pass::Instance, 1, K, k);
   if (has(mask, Pass::Albedo)) checkImage(f.albedo, Pass::Albedo, 3, K, k);
+  if (has(mask, Pass::Shading)) checkImage(f.shading, Pass::Shading, 3, K, k);
 }
 
 /// Gives `dst` the bytes of `src` atomically: a hard link (no extra disk space), or a copy where

@@ -13,9 +13,9 @@ struct PassEntry {
   const char* name;
 };
 constexpr PassEntry kPasses[] = {
-    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"}, {Pass::DepthRay, "ray_depth"},
-    {Pass::Normal, "normal"}, {Pass::Label, "label"},  {Pass::Instance, "instance"},
-    {Pass::Albedo, "albedo"},
+    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},    {Pass::DepthRay, "ray_depth"},
+    {Pass::Normal, "normal"}, {Pass::Label, "label"},     {Pass::Instance, "instance"},
+    {Pass::Albedo, "albedo"}, {Pass::Shading, "shading"},
 };
 }  // namespace
 

@@ -19,10 +19,13 @@ enum class Pass : uint32_t {
   Label = 1u << 4,     ///< NYU40 class id, 1 x uint8
   Instance = 1u << 5,  ///< instance id, 1 x uint16
   Albedo = 1u << 6,    ///< linear diffuse reflectance ("pure texture"), 3 x float
+  Shading = 1u << 7,   ///< illumination only: rgb / albedo per channel (the paper's "shading"
+                       ///< RGB variation), 3 x float; derived from the RGB pass, not exact
 };
 using PassMask = uint32_t;
-constexpr PassMask kAllPasses = 0x7f;
-constexpr PassMask kGroundTruthPasses = kAllPasses & ~static_cast<PassMask>(Pass::Rgb);
+constexpr PassMask kAllPasses = 0xff;
+/// The exact passes: one ray through each pixel centre (everything but rgb and shading).
+constexpr PassMask kGroundTruthPasses = 0x7e;
 inline bool has(PassMask m, Pass p) {
   return (m & static_cast<PassMask>(p)) != 0;
 }
@@ -42,6 +45,7 @@ struct Frame {
   ImageU8 label;      ///< 1 channel, NYU40
   ImageU16 instance;  ///< 1 channel
   ImageF albedo;      ///< 3 channels
+  ImageF shading;     ///< 3 channels
 };
 
 }  // namespace inet

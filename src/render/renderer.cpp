@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include <algorithm>
+
 #include "render/embree_scene.h"
 #include "render/gt_passes.h"
 
@@ -45,9 +47,26 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
       for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] += emission.data[i];
     }
     frame.passes |= static_cast<PassMask>(Pass::Rgb);
+    if (has(options.passes, Pass::Shading)) {
+      // illumination = rgb / albedo (albedo floored at 1e-3; no surface: 0)
+      Frame scratch;
+      const ImageF* albedo = &frame.albedo;
+      if (!has(options.passes, Pass::Albedo)) {
+        inet::renderGroundTruth(*scene_, lens, T_world_camera, static_cast<PassMask>(Pass::Albedo),
+                                scratch, moving);
+        albedo = &scratch.albedo;
+      }
+      frame.shading = ImageF(K.width, K.height, 3);
+      for (size_t i = 0; i < frame.shading.data.size(); ++i) {
+        float a = albedo->data[i];
+        frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
+      }
+      frame.passes |= static_cast<PassMask>(Pass::Shading);
+    }
   } else {
     frame.rgb = {};
-    frame.passes &= ~static_cast<PassMask>(Pass::Rgb);
+    frame.shading = {};
+    frame.passes &= ~(static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Shading));
   }
 }
 

@@ -48,6 +48,7 @@ TEST(Generate, WritesEveryPassInAslAndTumLayouts) {
   EXPECT_EQ(filesIn(s / "depth0/data", ".exr"), 4u);
   EXPECT_EQ(filesIn(s / "normal0/data", ".png"), 4u);
   EXPECT_EQ(filesIn(s / "albedo0/data", ".png"), 4u);
+  EXPECT_EQ(filesIn(s / "shading0/data", ".png"), 4u);
   EXPECT_EQ(filesIn(s / "label0/data", "_nyu.png"), 4u);
   EXPECT_EQ(filesIn(s / "label0/data", "_instance.png"), 4u);
   EXPECT_EQ(filesIn(s / "rgb", ".png"), 4u);

@@ -92,6 +92,7 @@ inline Frame syntheticFrame(const CameraIntrinsics& K, int k) {
   f.passes = kAllPasses;
   f.rgb = ImageF(K.width, K.height, 3);
   f.albedo = ImageF(K.width, K.height, 3);
+  f.shading = ImageF(K.width, K.height, 3, 0.25f);
   f.depth_z = ImageF(K.width, K.height, 1);
   f.depth_ray = ImageF(K.width, K.height, 1);
   f.normal = ImageF(K.width, K.height, 3);

@@ -34,8 +34,8 @@ TEST(SequenceWriter, WritesEveryFileOfEveryFrame) {
   ASSERT_EQ(w.frameCount(), 3u);
   EXPECT_TRUE(fs::exists(dir / "meta.json")) << "meta.json is written by the constructor";
   for (size_t k = 0; k < 3; ++k) {
-    // 7 ASL files (cam0, depth png + exr, normal, albedo, nyu, instance) + 2 TUM files
-    EXPECT_EQ(w.frameFiles(k).size(), 9u);
+    // 8 ASL files (cam0, depth png + exr, normal, albedo, shading, nyu, instance) + 2 TUM files
+    EXPECT_EQ(w.frameFiles(k).size(), 10u);
     EXPECT_FALSE(w.frameComplete(k));
     w.writeFrame(k, syntheticFrame(smallCamera(), static_cast<int>(k)));
     EXPECT_TRUE(w.frameComplete(k));
@@ -45,14 +45,15 @@ TEST(SequenceWriter, WritesEveryFileOfEveryFrame) {
   // ASL cam0 and TUM rgb hold the same encoding: encoded once, identical bytes.
   const auto files = w.frameFiles(0);
   ASSERT_EQ(files[0].parent_path().filename(), "data");
-  ASSERT_EQ(files[7].parent_path().filename(), "rgb");
-  EXPECT_EQ(readBytes(files[0]), readBytes(files[7]));
+  ASSERT_EQ(files[8].parent_path().filename(), "rgb");
+  EXPECT_EQ(readBytes(files[0]), readBytes(files[8]));
   w.finish();
   for (const char* f :
        {"cam0/data.csv", "cam0/sensor.yaml", "depth0/data.csv", "normal0/data.csv",
-        "albedo0/data.csv", "label0/data.csv", "state_groundtruth_estimate0/data.csv",
-        "state_groundtruth_estimate0/sensor.yaml", "body.yaml", "rgb.txt", "depth.txt",
-        "groundtruth.txt", "associations.txt", "accelerometer.txt", "camera.txt"})
+        "albedo0/data.csv", "shading0/data.csv", "label0/data.csv",
+        "state_groundtruth_estimate0/data.csv", "state_groundtruth_estimate0/sensor.yaml",
+        "body.yaml", "rgb.txt", "depth.txt", "groundtruth.txt", "associations.txt",
+        "accelerometer.txt", "camera.txt"})
     EXPECT_TRUE(fs::is_regular_file(dir / f)) << f;
   for (const auto& [name, bytes] : readTree(dir)) EXPECT_FALSE(isTemporaryName(name)) << name;
 
@@ -186,7 +187,7 @@ TEST(SequenceWriter, SameFramesGiveIdenticalBytesWhateverTheOrderAndThreads) {
   // Only meta.json may differ: it lists the formats in the order asked for.
   a.erase("meta.json");
   b.erase("meta.json");
-  EXPECT_EQ(a.size(), 3u * 9u + 19u);  // frames + 13 ASL and 6 TUM index files
+  EXPECT_EQ(a.size(), 3u * 10u + 21u);  // frames + 15 ASL and 6 TUM index files
   EXPECT_TRUE(a == b);
   for (const auto& [name, bytes] : a) EXPECT_EQ(bytes, b[name]) << name;
 }
@@ -202,7 +203,7 @@ TEST(SequenceWriter, MetaJsonStatesBothIntrinsicConventionsAndCallerFields) {
   EXPECT_EQ(j["sequence"], "living_room_01");
   EXPECT_EQ(j["frame_count"], 3);
   EXPECT_EQ(j["formats"], nlohmann::json({"asl", "tum"}));
-  EXPECT_EQ(j["passes"].size(), 7u);
+  EXPECT_EQ(j["passes"].size(), 8u);
   const auto& cam = j["camera"];
   EXPECT_EQ(cam["lens"], "pinhole");
   EXPECT_DOUBLE_EQ(cam["opencv"]["cx"].get<double>(), 11.5);
