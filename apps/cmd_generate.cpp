@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -112,9 +113,12 @@ CameraExposure exposureAt(const Trajectory& traj, size_t k, const Shutter& shutt
     interpolatePoseAt(traj.poses, open, ex.T_world_camera_open);
     interpolatePoseAt(traj.poses, close, ex.T_world_camera_close);
     // the trajectory's own samples inside the window (the frame's pose among them), so the
-    // camera follows the path rather than the chord and the mid-exposure pose is exact
-    for (const TimedPose& p : traj.poses)
-      if (p.t_ns > open && p.t_ns < close) ex.knots.emplace_back(p.t_ns - open, p.T_world_camera);
+    // camera follows the path rather than the chord and the mid-exposure pose is exact; the
+    // poses are sorted, so walk out from frame k instead of scanning the whole trajectory
+    size_t first = k;
+    while (first > 0 && traj.poses[first - 1].t_ns > open) --first;
+    for (size_t i = first; i < traj.size() && traj.poses[i].t_ns < close; ++i)
+      ex.knots.emplace_back(traj.poses[i].t_ns - open, traj.poses[i].T_world_camera);
   }
   return ex;
 }
@@ -186,9 +190,10 @@ void runGenerate(const GenerateArgs& a) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
 
+  // which frames a killed run already finished: checked once (it stats every file of a frame)
+  std::vector<char> complete(traj.size());
   size_t skipped = 0;
-  for (size_t k = 0; k < traj.size(); ++k)
-    if (writer.frameComplete(k)) ++skipped;
+  for (size_t k = 0; k < traj.size(); ++k) skipped += complete[k] = writer.frameComplete(k);
   if (skipped > 0)
     std::fprintf(stderr, "resuming: %zu of %zu frames already complete\n", skipped, traj.size());
 
@@ -203,7 +208,7 @@ void runGenerate(const GenerateArgs& a) {
                    traj.size());
       throw CLI::RuntimeError(130);
     }
-    if (!writer.frameComplete(k)) {
+    if (!complete[k]) {
       renderer.render(lens, exposureAt(traj, k, shutter), opt, static_cast<uint32_t>(k), frame);
       if (!a.response.identity() && has(passes, Pass::Rgb))
         frame.rgb = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
@@ -238,9 +243,9 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "random seed; same seed, same bytes (default 0)");
   cmd->add_option("--threads", a->threads,
                   "worker threads, 0 = all cores (default 0); never changes the output");
-  cmd->add_option(
-      "--passes", a->passes,
-      "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, shading, or all (default all)");
+  cmd->add_option("--passes", a->passes,
+                  "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, shading, "
+                  "or all (default all)");
   cmd->add_option("--format", a->formats,
                   "comma list of output layouts: asl, tum (default asl,tum)");
   cmd->add_option("--width", a->K.width, "image width in pixels (default 640)");

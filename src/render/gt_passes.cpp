@@ -13,23 +13,15 @@ namespace {
 
 constexpr int kTile = 32;  // pixels per tile side; a multiple of the 4x4 packet block
 
-void allocate(ImageF& img, const CameraIntrinsics& K, int channels, bool on) {
+/// (Re)allocates `img` to the camera size with `channels`, or frees it when the pass is off.
+template <typename T>
+void allocate(Image<T>& img, const CameraIntrinsics& K, int channels, bool on) {
   if (!on) {
     img = {};
     return;
   }
   if (img.width != K.width || img.height != K.height || img.channels != channels)
-    img = ImageF(K.width, K.height, channels);
-}
-
-template <typename T>
-void allocateInt(Image<T>& img, const CameraIntrinsics& K, bool on) {
-  if (!on) {
-    img = {};
-    return;
-  }
-  if (img.width != K.width || img.height != K.height || img.channels != 1)
-    img = Image<T>(K.width, K.height, 1);
+    img = Image<T>(K.width, K.height, channels);
 }
 
 /// Writes one pixel of every selected pass. Pointers are resolved once per frame so the per-pixel
@@ -93,8 +85,8 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
   allocate(frame.depth_ray, K, 1, has(passes, Pass::DepthRay));
   allocate(frame.normal, K, 3, has(passes, Pass::Normal));
   allocate(frame.albedo, K, 3, has(passes, Pass::Albedo));
-  allocateInt(frame.label, K, has(passes, Pass::Label));
-  allocateInt(frame.instance, K, has(passes, Pass::Instance));
+  allocate(frame.label, K, 1, has(passes, Pass::Label));
+  allocate(frame.instance, K, 1, has(passes, Pass::Instance));
   frame.passes = (frame.passes & static_cast<PassMask>(Pass::Rgb)) | (passes & kGroundTruthPasses);
   if ((passes & kGroundTruthPasses) == 0) return;
 

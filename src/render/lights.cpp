@@ -54,6 +54,8 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
       a.radiance_scale = 1.f / (kPi * std::sin(half) * std::sin(half));
       p *= M_PI * scene_radius * scene_radius;
     }
+    if (a.type == LightType::Sun || a.type == LightType::Sky)
+      environment_.push_back(analytic_.size());
     analytic_.push_back(a);
     power.push_back(p);
   }
@@ -155,14 +157,14 @@ float SceneLights::trianglePdf(size_t i, float dist, float cos_light) const {
 Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
   Vec3f L = Vec3f::Zero();
   pdf = 0.f;
-  for (size_t k = 0; k < analytic_.size(); ++k) {
+  for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
     if (a.type == LightType::Sky) {
       L += a.rgb;
       pdf += pmf_[triangles_.size() + k] / (4.f * kPi);
       continue;
     }
-    if (a.type != LightType::Sun || -a.direction.dot(d) < a.cos_max) continue;
+    if (-a.direction.dot(d) < a.cos_max) continue;  // outside this sun's disk
     L += a.rgb * a.radiance_scale;
     pdf += pmf_[triangles_.size() + k] / (2.f * kPi * (1.f - a.cos_max));
   }

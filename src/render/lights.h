@@ -61,7 +61,8 @@ class SceneLights {
   float pick(float u, size_t& index) const;
 
   std::vector<EmissiveTriangle> triangles_;
-  std::vector<Analytic> analytic_;  // index in the CDF: triangleCount() + i
+  std::vector<Analytic> analytic_;   // index in the CDF: triangleCount() + i
+  std::vector<size_t> environment_;  // indices into analytic_ of suns and skies (escaped rays)
   std::vector<float> cdf_, pmf_;
 };
 

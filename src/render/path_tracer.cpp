@@ -106,7 +106,7 @@ class PathTracer final : public Integrator {
   }
 
  private:
-  static bool intersect(const EmbreeScene& scene, const Ray& ray, float tnear, RTCRayHit& rh) {
+  static bool intersect(const EmbreeScene& scene, const Ray& ray, RTCRayHit& rh) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     rh.ray.org_x = ray.o.x();
@@ -115,7 +115,7 @@ class PathTracer final : public Integrator {
     rh.ray.dir_x = ray.d.x();
     rh.ray.dir_y = ray.d.y();
     rh.ray.dir_z = ray.d.z();
-    rh.ray.tnear = tnear;
+    rh.ray.tnear = 0.f;  // origins are offset off the surface instead
     rh.ray.tfar = std::numeric_limits<float>::infinity();
     rh.ray.time = 0.f;
     rh.ray.mask = 0xffffffffu;
@@ -161,12 +161,11 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
   float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray`
   bool prev_delta = false;    // that sample came from a specular (delta) lobe: no MIS
-  bool from_camera = true;
-  float tnear = 0.f;
   for (int bounce = 0;; ++bounce) {
+    const bool from_camera = bounce == 0;
     RTCRayHit rh;
     ++rays;
-    if (!intersect(scene, ray, tnear, rh)) {
+    if (!intersect(scene, ray, rh)) {
       float sun_pdf;
       Vec3f sun = scene.lights().environmentRadiance(ray.d, sun_pdf);
       if (sun_pdf > 0.f) {
@@ -261,10 +260,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
       if (u_select_rr.y() >= q) break;
       throughput /= q;
     }
-    const Vec3f p_off = offset(wi);
-    ray = Ray{p_off, wi};
-    tnear = 0.f;
-    from_camera = false;
+    ray = Ray{offset(wi), wi};
   }
   return L;
 }

@@ -19,54 +19,48 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   const CameraIntrinsics& K = lens.K;
   const Pose& T_world_camera = exposure.T_world_camera_open;
   const CameraExposure* moving = exposure.moving() ? &exposure : nullptr;
-  inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes, frame, moving);
-  if (has(options.passes, Pass::Rgb)) {
-    if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
-      frame.rgb = ImageF(K.width, K.height, 3);
-    RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
-    if (!options.denoise) {
-      integrator_->render(ctx, frame.rgb, nullptr, nullptr);
-    } else {
-      // the guides come from the same camera as the ground truth; compute those the caller
-      // did not ask for into a scratch frame
-      const PassMask guides = static_cast<PassMask>(Pass::Albedo) |
-                              static_cast<PassMask>(Pass::Normal) |
-                              static_cast<PassMask>(Pass::DepthZ);
-      Frame scratch;
-      const Frame* g = &frame;
-      if ((options.passes & guides) != guides) {
-        inet::renderGroundTruth(*scene_, lens, T_world_camera, guides, scratch, moving);
-        g = &scratch;
-      }
-      ImageF variance(K.width, K.height, 3), emission(K.width, K.height, 3);
-      integrator_->render(ctx, frame.rgb, &variance, &emission);
-      // filter only the light reflected by the surfaces; lights in view stay sharp
-      for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] -= emission.data[i];
-      frame.rgb =
-          denoise(frame.rgb, g->albedo, g->normal, g->depth_z, &variance, options.denoise_options);
-      for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] += emission.data[i];
-    }
-    frame.passes |= static_cast<PassMask>(Pass::Rgb);
-    if (has(options.passes, Pass::Shading)) {
-      // illumination = rgb / albedo (albedo floored at 1e-3; no surface: 0)
-      Frame scratch;
-      const ImageF* albedo = &frame.albedo;
-      if (!has(options.passes, Pass::Albedo)) {
-        inet::renderGroundTruth(*scene_, lens, T_world_camera, static_cast<PassMask>(Pass::Albedo),
-                                scratch, moving);
-        albedo = &scratch.albedo;
-      }
-      frame.shading = ImageF(K.width, K.height, 3);
-      for (size_t i = 0; i < frame.shading.data.size(); ++i) {
-        float a = albedo->data[i];
-        frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
-      }
-      frame.passes |= static_cast<PassMask>(Pass::Shading);
-    }
-  } else {
+  const PassMask kAlbedo = static_cast<PassMask>(Pass::Albedo);
+  const bool shading = has(options.passes, Pass::Shading);
+  const bool rgb = has(options.passes, Pass::Rgb) || shading;  // shading is derived from rgb
+  // Ground truth the RGB stage needs besides what was asked (denoiser guides, the albedo that
+  // shading divides by) is traced in the same pass and left unflagged in frame.passes.
+  PassMask helpers = 0;
+  if (rgb && options.denoise)
+    helpers |= kAlbedo | static_cast<PassMask>(Pass::Normal) | static_cast<PassMask>(Pass::DepthZ);
+  if (shading) helpers |= kAlbedo;
+  inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes | helpers, frame, moving);
+  frame.passes &= ~helpers | options.passes;
+  frame.passes &= ~(static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Shading));
+  if (!rgb) {
     frame.rgb = {};
     frame.shading = {};
-    frame.passes &= ~(static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Shading));
+    return;
+  }
+  if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
+    frame.rgb = ImageF(K.width, K.height, 3);
+  RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
+  if (!options.denoise) {
+    integrator_->render(ctx, frame.rgb, nullptr, nullptr);
+  } else {
+    ImageF variance(K.width, K.height, 3), emission(K.width, K.height, 3);
+    integrator_->render(ctx, frame.rgb, &variance, &emission);
+    // filter only the light reflected by the surfaces; lights in view stay sharp
+    for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] -= emission.data[i];
+    frame.rgb = denoise(frame.rgb, frame.albedo, frame.normal, frame.depth_z, &variance,
+                        options.denoise_options);
+    for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] += emission.data[i];
+  }
+  if (has(options.passes, Pass::Rgb)) frame.passes |= static_cast<PassMask>(Pass::Rgb);
+  if (shading) {
+    // illumination = rgb / albedo (albedo floored at 1e-3; no surface: 0)
+    frame.shading = ImageF(K.width, K.height, 3);
+    for (size_t i = 0; i < frame.shading.data.size(); ++i) {
+      float a = frame.albedo.data[i];
+      frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
+    }
+    frame.passes |= static_cast<PassMask>(Pass::Shading);
+  } else {
+    frame.shading = {};
   }
 }
 

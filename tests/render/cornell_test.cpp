@@ -14,10 +14,9 @@
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 
+#include "core/atomic_file.h"
 #include "dataset/image_io.h"
 #include "render/renderer.h"
 #include "scene/assimp_importer.h"
@@ -33,17 +32,14 @@ fs::path correctedCornellBox(const fs::path& dir) {
   fs::create_directories(out);
   fs::copy_file(dir / "CornellBox-Original.mtl", out / "CornellBox-Original.mtl",
                 fs::copy_options::overwrite_existing);
-  std::ifstream in(dir / "CornellBox-Original.obj", std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string obj = text.str();
+  std::string obj = readTextFile(dir / "CornellBox-Original.obj");
   for (const std::string bad : {"\nf -12 -11 -10 -9", "\nf -8 -7 -6 -5"}) {
     size_t at = obj.find(bad);
     EXPECT_NE(at, std::string::npos) << "the known defect is gone: regenerate the reference";
     EXPECT_EQ(obj.find(bad, at + 1), std::string::npos);
     if (at != std::string::npos) obj.replace(at, bad.size(), "\nf -4 -3 -2 -1");
   }
-  std::ofstream(out / "CornellBox-Original.obj", std::ios::binary) << obj;
+  writeTextAtomic(out / "CornellBox-Original.obj", obj);
   return out / "CornellBox-Original.obj";
 }
 

@@ -198,6 +198,27 @@ TEST(PathTracer, ThinPaneAndConductorInAFurnace) {
   EXPECT_GT(blue, 0.25);
 }
 
+// Shading is rgb / albedo, and may be asked for alone: the renderer then traces the rgb and the
+// albedo it needs without reporting them as passes.
+TEST(PathTracer, ShadingIsRgbOverAlbedoAndStandsAlone) {
+  Scene s = furnace(0.5f, 1.0f);
+  Renderer r(s);
+  CameraIntrinsics K = smallCamera(24, 16, 20);
+  Pose pose = Pose::lookAt(Vec3(0.3, -0.2, 1.1), Vec3(1, 1, 0.8), Vec3::UnitZ());
+  RenderOptions only = rgbOnly(4, 8);
+  only.passes = static_cast<PassMask>(Pass::Shading);
+  Frame a;
+  r.render(K, pose, only, 0, a);
+  EXPECT_EQ(a.passes, static_cast<PassMask>(Pass::Shading));
+  ASSERT_EQ(a.shading.pixelCount(), K.width * static_cast<size_t>(K.height));
+  RenderOptions both = rgbOnly(4, 8);
+  both.passes = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Albedo);
+  Frame b;
+  r.render(K, pose, both, 0, b);
+  for (size_t i = 0; i < a.shading.data.size(); ++i)
+    ASSERT_FLOAT_EQ(a.shading.data[i] * b.albedo.data[i], b.rgb.data[i]) << i;
+}
+
 TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   Scene s = furnace(0.7f, 0.3f);
   Renderer r(s);
