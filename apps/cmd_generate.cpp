@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -49,10 +50,11 @@ struct GenerateArgs {
   bool denoise = false;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
-  double aperture = 0.0;
-  double focus = 2.0;
+  LensArgs lens;
+  bool hdr = false;
   ResponseArgs response;
   CameraIntrinsics K;
+  bool width_set = false, height_set = false, fx_set = false, fy_set = false;
   bool cx_set = false, cy_set = false;
 };
 
@@ -94,12 +96,59 @@ void validateArgs(const GenerateArgs& a) {
     throw InputError("", "--exposure-ms", "must be in 0..10000");
   if (!(a.readout_ms >= 0 && a.readout_ms <= 10000))
     throw InputError("", "--readout-ms", "must be in 0..10000");
-  if (!(a.aperture >= 0 && a.aperture < 1))
-    throw InputError("", "--aperture", "must be in [0, 1) metres");
-  if (!(a.focus > 0)) throw InputError("", "--focus", "must be > 0 metres");
   if (a.sequence.empty() || a.sequence.find('/') != std::string::npos || a.sequence == "." ||
       a.sequence == "..")
     throw InputError("", "--sequence", "must be a plain folder name");
+}
+
+/// The image size and intrinsics of the lens. Pinhole and thin lens: --width/--height/--fx/...
+/// as given. Fisheye (square) and panorama (2:1): the paper's 600x600 and 5000x2500 unless
+/// --width and/or --height say otherwise (one given: the other follows from the aspect ratio);
+/// their focal length follows from the size, so --fx/--fy/--cx/--cy are refused.
+CameraIntrinsics lensIntrinsics(const GenerateArgs& a, LensType type) {
+  CameraIntrinsics K = a.K;
+  if (type == LensType::Pinhole || type == LensType::ThinLens) {
+    if (!a.cx_set) K.cx = K.width / 2.0;
+    if (!a.cy_set) K.cy = K.height / 2.0;
+    return K;
+  }
+  const std::string name = lensTypeName(type);
+  const std::pair<bool, const char*> unused[] = {
+      {a.fx_set, "--fx"}, {a.fy_set, "--fy"}, {a.cx_set, "--cx"}, {a.cy_set, "--cy"}};
+  for (const auto& [set, flag] : unused)
+    if (set)
+      throw InputError("", flag,
+                       "not used by --lens " + name +
+                           ": its intrinsics follow from the image size (--width, --height)" +
+                           (type == LensType::Fisheye ? " and --fisheye-fov" : ""));
+  const int aspect = type == LensType::Fisheye ? 1 : 2;  // width = aspect * height
+  const std::string shape = type == LensType::Fisheye ? "square" : "2:1 (width = 2 x height)";
+  if (a.width_set && a.height_set) {
+    if (K.width != aspect * K.height)
+      throw InputError("", "--height",
+                       fmt::format("a {} image is {}: --width {} needs --height {}, not {}", name,
+                                   shape, K.width, K.width / aspect, K.height));
+  } else if (a.width_set) {
+    if (K.width % aspect != 0)
+      throw InputError(
+          "", "--width",
+          fmt::format("a panorama image is 2:1 (width = 2 x height): {} is odd", K.width));
+    K.height = K.width / aspect;
+  } else if (a.height_set) {
+    K.width = aspect * K.height;
+  } else {
+    K.width = type == LensType::Fisheye ? 600 : 5000;
+    K.height = K.width / aspect;
+  }
+  return K;
+}
+
+/// Fisheye and panorama images hold directions at and beyond 90 degrees from the axis, where
+/// z-depth is zero or negative: their depth is the ray distance (docs/cameras.md section 4), so
+/// the 'depth' pass becomes 'ray_depth' and the depth PNGs hold the ray distance.
+PassMask lensPasses(PassMask passes, LensType type) {
+  if (groundTruthDepthKind(type) == DepthKind::ZDepth || !has(passes, Pass::DepthZ)) return passes;
+  return (passes & ~static_cast<PassMask>(Pass::DepthZ)) | static_cast<PassMask>(Pass::DepthRay);
 }
 
 /// The exposure of frame k: centred on the frame's timestamp, poses interpolated along the
@@ -136,7 +185,9 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                  {"spp", opt.spp},
                  {"max_bounces", opt.max_bounces},
                  {"pixel_filter", "box, 1 pixel"},
-                 {"rgb", "linear radiance -> clamp -> sRGB 8-bit"}};
+                 {"rgb", a.hdr ? "linear radiance -> cam0 EXR (float32); -> camera response -> "
+                                 "clamp -> sRGB 8-bit PNG"
+                               : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
   m["seed"] = opt.seed;
   m["shutter"] = {{"exposure_ms", a.exposure_ms},
                   {"readout_ms", a.readout_ms},
@@ -144,9 +195,6 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                    "the middle of the exposure window [t - (readout + exposure)/2, "
                    "t + (readout + exposure)/2]; row y of the ground truth is traced "
                    "at the middle of that row's own exposure"}};
-  m["lens"] = {{"type", a.aperture > 0 ? "thin_lens" : "pinhole"},
-               {"aperture_radius_m", a.aperture},
-               {"focus_distance_m", a.focus}};
   m["camera_response"] = a.response.describe();
   m["fps"] = a.fps;
   return m;
@@ -155,16 +203,17 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
 void runGenerate(const GenerateArgs& a) {
   validateArgs(a);
   a.response.validate();
+  const LensType lens_type = a.lens.type();
+  CameraIntrinsics K = lensIntrinsics(a, lens_type);
+  K.validate("generate");
+  const LensModel lens = a.lens.make(K, "generate");
   ThreadLimit limit(a.threads);
-  PassMask passes = parsePassList(a.passes, "generate");
+  PassMask passes = lensPasses(parsePassList(a.passes, "generate"), lens_type);
+  if (a.hdr && !has(passes, Pass::Rgb)) throw InputError("", "--hdr", "needs the rgb pass");
   std::vector<std::string> formats = splitList(a.formats);
   // Load and check every input before anything is written.
   Scene scene = a.scene.load();
   Trajectory traj = loadTrajectory(a);
-  CameraIntrinsics K = a.K;
-  if (!a.cx_set) K.cx = K.width / 2.0;
-  if (!a.cy_set) K.cy = K.height / 2.0;
-  K.validate("generate");
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
@@ -175,15 +224,14 @@ void runGenerate(const GenerateArgs& a) {
   fs::path dir = fs::path(a.out) / scene.name / a.sequence;
   SequenceSpec spec;
   spec.dir = dir;
-  spec.intrinsics = K;
+  spec.intrinsics = lens.K;
+  spec.lens = lens;
   spec.passes = passes;
+  spec.rgb_exr = a.hdr;
   spec.meta = provenance(a, scene, opt);
   SequenceWriter writer(spec, traj, formats);
 
   Renderer renderer(scene, opt.integrator);
-  LensModel lens =
-      a.aperture > 0 ? LensModel::thinLens(K, a.aperture, a.focus) : LensModel::pinhole(K);
-  lens.validate("generate");
   Shutter shutter;
   shutter.exposure_ns = static_cast<TimeNs>(std::llround(a.exposure_ms * 1e6));
   shutter.readout_ns = static_cast<TimeNs>(std::llround(a.readout_ms * 1e6));
@@ -199,6 +247,7 @@ void runGenerate(const GenerateArgs& a) {
 
   ProgressBar bar(static_cast<int64_t>(traj.size()), "frames", a.progress);
   Frame frame;
+  ImageF shown;  // the colour after the camera response; frame.rgb stays linear (the EXR)
   size_t done = 0;
   for (size_t k = 0; k < traj.size(); ++k) {
     if (g_stop) {
@@ -210,9 +259,9 @@ void runGenerate(const GenerateArgs& a) {
     }
     if (!complete[k]) {
       renderer.render(lens, exposureAt(traj, k, shutter), opt, static_cast<uint32_t>(k), frame);
-      if (!a.response.identity() && has(passes, Pass::Rgb))
-        frame.rgb = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
-      writer.writeFrame(k, frame);
+      const bool respond = !a.response.identity() && has(passes, Pass::Rgb);
+      if (respond) shown = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
+      writer.writeFrame(k, frame, respond ? &shown : nullptr);
     }
     bar.update(static_cast<int64_t>(++done));
   }
@@ -227,7 +276,8 @@ void registerGenerate(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "generate",
       "Render a sequence: RGB + ground truth (depth, ray depth, normals, NYU40 labels, instances, "
-      "albedo) along a camera trajectory, written as ASL/EuRoC and TUM RGB-D folders");
+      "albedo) along a camera trajectory, written as ASL/EuRoC and TUM RGB-D folders. With "
+      "--lens fisheye or panorama, 'depth' is the ray distance (there is no z-depth)");
   auto a = std::make_shared<GenerateArgs>();
   a->scene.addTo(*cmd);
   cmd->add_option("--trajectory", a->trajectory,
@@ -248,10 +298,16 @@ void registerGenerate(CLI::App& app) {
                   "or all (default all)");
   cmd->add_option("--format", a->formats,
                   "comma list of output layouts: asl, tum (default asl,tum)");
-  cmd->add_option("--width", a->K.width, "image width in pixels (default 640)");
-  cmd->add_option("--height", a->K.height, "image height in pixels (default 480)");
-  cmd->add_option("--fx", a->K.fx, "focal length in pixels (default 600)");
-  cmd->add_option("--fy", a->K.fy, "focal length in pixels (default 600)");
+  cmd->add_option("--width", a->K.width,
+                  "image width in pixels (default 640; fisheye 600, panorama 5000)")
+      ->each([a](const std::string&) { a->width_set = true; });
+  cmd->add_option("--height", a->K.height,
+                  "image height in pixels (default 480; fisheye = width, panorama = width / 2)")
+      ->each([a](const std::string&) { a->height_set = true; });
+  cmd->add_option("--fx", a->K.fx, "focal length in pixels (default 600; pinhole, thin_lens)")
+      ->each([a](const std::string&) { a->fx_set = true; });
+  cmd->add_option("--fy", a->K.fy, "focal length in pixels (default 600; pinhole, thin_lens)")
+      ->each([a](const std::string&) { a->fy_set = true; });
   cmd->add_option("--cx", a->K.cx,
                   "principal point with pixel (i,j) centred at (i+0.5, j+0.5) (default width/2; "
                   "files for SLAM tools state cx-0.5, the OpenCV convention)")
@@ -267,9 +323,10 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--readout-ms", a->readout_ms,
                   "rolling shutter readout, first to last row, in ms (default 0 = global shutter); "
                   "ground truth follows each row's own pose");
-  cmd->add_option("--aperture", a->aperture,
-                  "thin-lens aperture radius in metres: depth of field (default 0)");
-  cmd->add_option("--focus", a->focus, "thin-lens focus distance in metres (default 2)");
+  a->lens.addTo(*cmd);
+  cmd->add_flag("--hdr", a->hdr,
+                "also write the linear RGB radiance (before exposure, noise, tone curve, sRGB) as "
+                "float32 EXR, channels R G B: cam0/data/<t>.exr next to the PNG");
   cmd->add_flag("--denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered); off by default");

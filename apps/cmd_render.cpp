@@ -9,7 +9,7 @@
 #include "common.h"
 #include "core/error.h"
 #include "dataset/image_encode.h"
-#include "dataset/image_io.h"
+#include "core/image_io.h"
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "trajectory/builtin_trajectory.h"
@@ -25,10 +25,7 @@ struct RenderArgs {
   uint64_t seed = 0;
   int threads = 0;
   std::string pass = "rgb";
-  std::string lens = "pinhole";
-  double aperture = 0.0;
-  double focus = 2.0;
-  double fisheye_fov = 180.0;
+  LensArgs lens;
   bool denoise = false;
   ResponseArgs response;
   std::string camera_end;
@@ -40,18 +37,14 @@ struct RenderArgs {
 /// The lens of the command line around the camera.json intrinsics. Fisheye and panorama use
 /// their own image sizes (the paper's 600x600 fisheye, 5000x2500 panorama) unless the camera
 /// file is square (fisheye) or 2:1 (panorama).
-LensModel makeLens(const RenderArgs& a, const CameraIntrinsics& K) {
-  LensType type = parseLensType(a.lens, "render", "--lens");
-  LensModel lens = LensModel::pinhole(K);
-  if (type == LensType::ThinLens) {
-    lens = LensModel::thinLens(K, a.aperture, a.focus);
-  } else if (type == LensType::Fisheye) {
-    lens = LensModel::fisheye(K.width == K.height ? K.width : 600, a.fisheye_fov);
-  } else if (type == LensType::Panorama) {
-    lens = K.width == 2 * K.height ? LensModel::panorama(K.width, K.height) : LensModel::panorama();
+LensModel makeLens(const RenderArgs& a, CameraIntrinsics K) {
+  const LensType type = a.lens.type();
+  if (type == LensType::Fisheye && K.width != K.height) K.width = K.height = 600;
+  if (type == LensType::Panorama && K.width != 2 * K.height) {
+    K.width = 5000;
+    K.height = 2500;
   }
-  lens.validate("render");
-  return lens;
+  return a.lens.make(K, "render");
 }
 
 void runRender(const RenderArgs& a) {
@@ -72,6 +65,10 @@ void runRender(const RenderArgs& a) {
     throw InputError("", "--camera", "required with --scene/--layout");
   }
   LensModel lens = makeLens(a, cam.intrinsics);
+  // fisheye and panorama have no z-depth: their depth is the ray distance (docs/cameras.md 4)
+  if (pass == static_cast<PassMask>(Pass::DepthZ) &&
+      groundTruthDepthKind(lens.type) == DepthKind::RayDistance)
+    pass = static_cast<PassMask>(Pass::DepthRay);
   a.response.validate();
   ThreadLimit limit(a.threads);
   Scene scene = a.scene.load();
@@ -137,14 +134,7 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_option("--pass,--passes", a->pass,
                   "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
-  cmd->add_option(
-      "--lens", a->lens,
-      "pinhole (with the camera's distortion), thin_lens (depth of field), fisheye "
-      "(equidistant, 600x600, 180 deg), panorama (equirectangular 5000x2500); default pinhole");
-  cmd->add_option("--aperture", a->aperture, "thin_lens aperture radius in metres (default 0)");
-  cmd->add_option("--focus", a->focus, "thin_lens focus distance in metres (default 2)");
-  cmd->add_option("--fisheye-fov", a->fisheye_fov,
-                  "fisheye field of view in degrees (default 180)");
+  a->lens.addTo(*cmd);
   a->response.addTo(*cmd);
   cmd->add_flag("--denoise", a->denoise,
                 "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "

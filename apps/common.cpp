@@ -76,6 +76,61 @@ std::string ResponseArgs::describe() const {
                      sensor_noise ? SensorNoise{}.describe() : std::string("off"));
 }
 
+void LensArgs::addTo(CLI::App& cmd) {
+  cmd.add_option("--lens", lens,
+                 "pinhole, thin_lens (depth of field: --aperture, --focus), fisheye (equidistant "
+                 "r = f theta, square image, default 600x600 and 180 deg: --fisheye-fov), "
+                 "panorama (equirectangular 360 x 180 deg, 2:1 image, default 5000x2500); "
+                 "default pinhole, or thin_lens when --aperture > 0");
+  cmd.add_option("--aperture", aperture_m,
+                 "thin-lens aperture radius in metres: depth of field (default 0)");
+  focus_opt_ = cmd.add_option("--focus", focus_m,
+                              "thin-lens focus distance (z of the sharp plane) in metres "
+                              "(default 2)");
+  fov_opt_ = cmd.add_option("--fisheye-fov", fisheye_fov_deg,
+                            "fisheye field of view in degrees, in (0, 360] (default 180)");
+}
+
+LensType LensArgs::type() const {
+  LensType t = lens.empty() ? (aperture_m > 0 ? LensType::ThinLens : LensType::Pinhole)
+                            : parseLensType(lens, "", "--lens");
+  if (!(aperture_m >= 0 && aperture_m < 1))
+    throw InputError("", "--aperture", "must be in [0, 1) metres");
+  if (!(focus_m > 0 && std::isfinite(focus_m)))
+    throw InputError("", "--focus", "must be > 0 metres");
+  if (!(fisheye_fov_deg > 0 && fisheye_fov_deg <= 360))
+    throw InputError("", "--fisheye-fov", "must be in (0, 360] degrees");
+  const std::string name = lensTypeName(t);
+  if (t != LensType::ThinLens && aperture_m > 0)
+    throw InputError("", "--aperture", "only used by --lens thin_lens, not " + name);
+  if (t != LensType::ThinLens && focus_opt_ && focus_opt_->count() > 0)
+    throw InputError("", "--focus", "only used by --lens thin_lens, not " + name);
+  if (t != LensType::Fisheye && fov_opt_ && fov_opt_->count() > 0)
+    throw InputError("", "--fisheye-fov", "only used by --lens fisheye, not " + name);
+  return t;
+}
+
+LensModel LensArgs::make(const CameraIntrinsics& K, const std::string& where) const {
+  LensModel m;
+  switch (type()) {
+    case LensType::Pinhole:
+      m = LensModel::pinhole(K);
+      break;
+    case LensType::ThinLens:
+      m = LensModel::thinLens(K, aperture_m, focus_m);
+      break;
+    case LensType::Fisheye:
+      INET_CHECK_MSG(K.width == K.height, "a fisheye image is square");
+      m = LensModel::fisheye(K.width, fisheye_fov_deg);
+      break;
+    case LensType::Panorama:
+      m = LensModel::panorama(K.width, K.height);
+      break;
+  }
+  m.validate(where);
+  return m;
+}
+
 struct ThreadLimit::Impl {
   std::unique_ptr<tbb::global_control> control;
 };

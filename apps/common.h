@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "render/lens.h"
 #include "scene/scene.h"
 
 namespace inet::app {
@@ -38,6 +39,28 @@ struct ResponseArgs {
   /// Linear RGB -> display-referred linear RGB in [0, 1] (then sRGB-encoded by the writers).
   ImageF apply(const ImageF& linear, uint64_t seed, uint32_t frame) const;
   std::string describe() const;
+};
+
+/// --lens, --aperture, --focus, --fisheye-fov: the lens of `render` and `generate`
+/// (docs/cameras.md). A flag the chosen lens does not use is an error, not silently ignored.
+struct LensArgs {
+  std::string lens;  ///< registry name; empty = thin_lens if --aperture > 0, else pinhole
+  double aperture_m = 0.0;
+  double focus_m = 2.0;
+  double fisheye_fov_deg = 180.0;
+  /// Adds the four options to `cmd`.
+  void addTo(CLI::App& cmd);
+  /// The chosen model. InputError naming the flag: unknown --lens (listing the valid names),
+  /// values out of range, or a flag the model does not use (--aperture/--focus without a thin
+  /// lens, --fisheye-fov without a fisheye).
+  LensType type() const;
+  /// The lens. Pinhole and thin lens use K as given; a fisheye takes only K's size (square,
+  /// checked by the caller) and derives f from --fisheye-fov; a panorama takes only K's size.
+  LensModel make(const CameraIntrinsics& K, const std::string& where) const;
+
+ private:
+  CLI::Option* focus_opt_ = nullptr;
+  CLI::Option* fov_opt_ = nullptr;
 };
 
 /// Limits TBB to n threads for the life of the object (n = 0: all cores).

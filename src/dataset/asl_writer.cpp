@@ -14,18 +14,16 @@ namespace inet {
 namespace {
 
 /// One ASL sensor folder holding images. `comment` goes into its sensor.yaml; it is a YAML plain
-/// scalar, so it must not contain ": " or " #".
+/// scalar, so it must not contain ": " or " #". Empty: built by sensorComment (depends on the
+/// lens and the outputs).
 struct AslSensor {
   const char* folder;
   const char* comment;
 };
 
 constexpr AslSensor kImageSensors[] = {
-    {"cam0", "interiornet cam0, path-traced colour, 8-bit sRGB RGB PNG"},
-    {"depth0",
-     "interiornet depth0, registered to cam0. <t>.png z-depth along the optical axis as 16-bit "
-     "millimetres (0 = no depth or beyond 65.535 m). <t>.exr Euclidean ray depth (camera centre "
-     "to surface) in metres, float channel Z, 0 = no depth"},
+    {"cam0", ""},
+    {"depth0", ""},
     {"normal0",
      "interiornet normal0, registered to cam0. Unit surface normal in the camera frame (x right, "
      "y down, z forward) as 16-bit RGB, code = round((n + 1) / 2 * 65535), (0, 0, 0) = none"},
@@ -62,6 +60,60 @@ std::string rateText(const Trajectory& traj) {
   return formatFloat(rate);
 }
 
+/// Kalibr's numbers: intrinsics in the OpenCV convention, with the comment every line carries.
+std::string intrinsicsLine(const OpenCvCamera& cv) {
+  return fmt::format(
+      "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
+      "integers)\n",
+      formatFloat(cv.fx), formatFloat(cv.fy), formatFloat(cv.cx), formatFloat(cv.cy));
+}
+
+/// camera_model, intrinsics and distortion of a lens as Kalibr states them, with a comment
+/// where the model needs one (docs/output.md section 4).
+std::string lensYaml(const LensModel& lens) {
+  const OpenCvCamera cv = toOpenCv(lens);
+  switch (lens.type) {
+    case LensType::Pinhole:
+    case LensType::ThinLens: {
+      std::string s;
+      if (lens.type == LensType::ThinLens)
+        s = fmt::format(
+            "# Thin lens (depth of field): aperture radius {} m, focused on the plane z = {} "
+            "m.\n# Its chief rays, and so all ground truth, follow the pinhole below.\n",
+            formatFloat(lens.aperture_radius_m), formatFloat(lens.focus_distance_m));
+      return s + "camera_model: pinhole\n" + intrinsicsLine(cv) +
+             fmt::format(
+                 "distortion_model: radial-tangential\n"
+                 "distortion_coefficients: [{}, {}, {}, {}]\n",
+                 formatFloat(lens.k1), formatFloat(lens.k2), formatFloat(lens.p1),
+                 formatFloat(lens.p2));
+    }
+    case LensType::Fisheye:
+      return fmt::format(
+                 "# Equidistant fisheye: r = f * theta, r = distance from the principal point "
+                 "(px),\n# theta = angle from the optical axis (rad), f = fu = fv (px per rad); "
+                 "rays up to\n# theta = {} deg (field of view {} deg); pixels outside that "
+                 "circle hold every\n# pass's 'none' value. Kalibr pinhole-equi, OpenCV "
+                 "cv::fisheye with k1..k4 = 0.\n",
+                 formatFloat(lens.fisheye_fov_deg / 2), formatFloat(lens.fisheye_fov_deg)) +
+             "camera_model: pinhole\n" + intrinsicsLine(cv) +
+             "distortion_model: equidistant\n"
+             "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n";
+    case LensType::Panorama:
+      return fmt::format(
+          "# Equirectangular panorama; NOT a Kalibr camera model (no intrinsics, no "
+          "distortion).\n"
+          "# Pixel centre (i, j), OpenCV convention (integers), in the camera frame (x right, y "
+          "down, z forward):\n"
+          "#   longitude = (i - {}) / {} rad (0 = +z forward, +pi/2 = +x right, seam at -z)\n"
+          "#   latitude  = (j - {}) / {} rad (-pi/2 = -y up, +pi/2 down)\n"
+          "#   ray = (cos(lat) sin(lon), sin(lat), cos(lat) cos(lon))\n"
+          "camera_model: equirectangular\n",
+          formatFloat(cv.cx), formatFloat(cv.fx), formatFloat(cv.cy), formatFloat(cv.fy));
+  }
+  return "";
+}
+
 class AslWriter final : public FormatWriter {
  public:
   explicit AslWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
@@ -69,8 +121,12 @@ class AslWriter final : public FormatWriter {
       if (ctx().traj.poses[k].t_ns < 0)
         throw InputError("trajectory", fmt::format("pose {}", k),
                          "negative timestamp; ASL file names need t >= 0 ns");
+    if (ctx().lens().k3 != 0)
+      throw InputError("camera", "k3",
+                       "the ASL sensor.yaml (Kalibr radial-tangential: k1 k2 p1 p2) has no k3");
     addOutput("cam0/data", ".png", srgbPng(Pass::Rgb));
-    addOutput("depth0/data", ".png", depthPng(Pass::DepthZ, kDepthScaleMm));
+    if (ctx().spec.rgb_exr) addOutput("cam0/data", ".exr", floatExr(Pass::Rgb, {"R", "G", "B"}));
+    addOutput("depth0/data", ".png", depthPng(ctx().depthPngPass(), kDepthScaleMm));
     addOutput("depth0/data", ".exr", floatExr(Pass::DepthRay, {"Z"}));
     addOutput("normal0/data", ".png", normalPng(Pass::Normal));
     addOutput("albedo0/data", ".png", srgbPng(Pass::Albedo));
@@ -94,7 +150,7 @@ class AslWriter final : public FormatWriter {
       for (const auto& o : outputs()) {
         if (o.folder != data_folder) continue;
         writeTextAtomic(dir / sensor.folder / "data.csv", cameraCsv(o.suffix));
-        writeTextAtomic(dir / sensor.folder / "sensor.yaml", cameraYaml(sensor.comment));
+        writeTextAtomic(dir / sensor.folder / "sensor.yaml", cameraYaml(sensorComment(sensor)));
         break;
       }
     }
@@ -103,6 +159,32 @@ class AslWriter final : public FormatWriter {
   }
 
  private:
+  bool writes(const std::string& folder, const std::string& suffix) const {
+    for (const auto& o : outputs())
+      if (o.folder == folder && o.suffix == suffix) return true;
+    return false;
+  }
+
+  /// The comment of a folder whose files depend on the lens or on the options.
+  std::string sensorComment(const AslSensor& sensor) const {
+    const std::string folder = sensor.folder;
+    if (folder == "cam0") {
+      std::string s = "interiornet cam0, path-traced colour. <t>.png 8-bit sRGB RGB";
+      if (writes("cam0/data", ".exr"))
+        s += ". <t>.exr linear RGB radiance before exposure, noise, tone curve and sRGB, "
+             "float32 channels R G B";
+      return s;
+    }
+    if (folder != "depth0") return sensor.comment;
+    const bool z = ctx().depthPngPass() == Pass::DepthZ;
+    return std::string("interiornet depth0, registered to cam0. <t>.png ") +
+           (z ? "z-depth along the optical axis"
+              : "Euclidean ray depth (camera centre to surface, the " +
+                    std::string(lensTypeName(ctx().lens().type)) + " lens has no z-depth)") +
+           " as 16-bit millimetres (0 = no depth or beyond 65.535 m). <t>.exr Euclidean ray "
+           "depth (camera centre to surface) in metres, float channel Z, 0 = no depth";
+  }
+
   std::string cameraCsv(const std::string& suffix) const {
     std::string s = std::string(kEurocCameraCsvHeader) + "\n";
     for (size_t k = 0; k < ctx().traj.size(); ++k) {
@@ -112,20 +194,15 @@ class AslWriter final : public FormatWriter {
     return s;
   }
 
-  std::string cameraYaml(const char* comment) const {
+  std::string cameraYaml(const std::string& comment) const {
     const CameraIntrinsics& K = ctx().spec.intrinsics;
-    std::string s = fmt::format(
-        "# General sensor definitions.\nsensor_type: camera\ncomment: {}\n\n"
-        "# Sensor extrinsics wrt. the body-frame.\n{}\n",
-        comment, kIdentityTbs);
-    s += fmt::format(
-        "# Camera specific definitions.\nrate_hz: {}\nresolution: [{}, {}]\ncamera_model: pinhole\n"
-        "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
-        "integers)\ndistortion_model: radial-tangential\n"
-        "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n\n",
-        rateText(ctx().traj), K.width, K.height, formatFloat(K.fx), formatFloat(K.fy),
-        formatFloat(K.cxOpenCV()), formatFloat(K.cyOpenCV()));
-    return s;
+    return fmt::format(
+               "# General sensor definitions.\nsensor_type: camera\ncomment: {}\n\n"
+               "# Sensor extrinsics wrt. the body-frame.\n{}\n",
+               comment, kIdentityTbs) +
+           fmt::format("# Camera specific definitions.\nrate_hz: {}\nresolution: [{}, {}]\n",
+                       rateText(ctx().traj), K.width, K.height) +
+           lensYaml(ctx().lens()) + "\n";
   }
 
   std::string groundTruthCsv() const {

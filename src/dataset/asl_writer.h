@@ -4,7 +4,8 @@
 //
 //   body.yaml                                  comment only; body frame B = cam0 frame
 //   cam0/data/<t>.png        sensor.yaml data.csv   colour, 8-bit sRGB RGB
-//   depth0/data/<t>.png      sensor.yaml data.csv   z-depth, 16-bit, millimetres
+//   cam0/data/<t>.exr                               spec.rgb_exr: linear RGB, float, R G B
+//   depth0/data/<t>.png      sensor.yaml data.csv   z-depth (fisheye, panorama: ray depth), mm
 //   depth0/data/<t>.exr                             Euclidean ray depth, float metres, channel Z
 //   normal0/data/<t>.png     sensor.yaml data.csv   camera-frame normals, 16-bit RGB
 //   albedo0/data/<t>.png     sensor.yaml data.csv   diffuse albedo, 8-bit sRGB RGB
@@ -15,7 +16,9 @@
 // <t> is the frame time in integer nanoseconds, zero-padded to 19 digits (EuRoC's width), used
 // both in file names and in the timestamp column. Only the passes in spec.passes are written;
 // a folder with no pass is not created. Every image folder is registered to cam0 and shares its
-// intrinsics (sensor.yaml states them in the OpenCV convention).
+// intrinsics (sensor.yaml states them in the OpenCV convention) and lens: pinhole and thin lens
+// as Kalibr pinhole + radial-tangential, fisheye as Kalibr pinhole + equidistant (r = f theta),
+// panorama as "camera_model: equirectangular" with the pixel mapping in comments.
 #include <memory>
 #include <string>
 

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "dataset/asl_writer.h"
 #include "dataset/image_encode.h"
-#include "dataset/image_io.h"
+#include "core/image_io.h"
 #include "dataset/tum_writer.h"
 
 namespace fs = std::filesystem;
@@ -62,6 +62,14 @@ std::string SequenceContext::sequenceName() const {
   fs::path p = spec.dir.lexically_normal();
   if (p.filename().empty()) p = p.parent_path();  // "out/seq/" -> "out/seq"
   return p.filename().string();
+}
+
+LensModel SequenceContext::lens() const {
+  return spec.lens ? *spec.lens : LensModel::pinhole(spec.intrinsics);
+}
+
+Pass SequenceContext::depthPngPass() const {
+  return groundTruthDepthKind(lens().type) == DepthKind::ZDepth ? Pass::DepthZ : Pass::DepthRay;
 }
 
 std::vector<fs::path> FormatWriter::frameFiles(size_t k) const {
@@ -118,16 +126,21 @@ std::vector<std::string> parseFormatList(const std::string& list) {
 }
 
 FrameEncoder srgbPng(Pass pass) {
+  const std::string key = "png8-srgb/" + passName(pass);
+  if (pass == Pass::Rgb)  // the displayed colour: after the camera response
+    return {pass, key,
+            [](const fs::path& p, const FrameView& v) { writePng(p, encodeSrgb8(v.rgb_display)); }};
   const ImageF Frame::*m = floatMember(pass);
-  return {pass, "png8-srgb/" + passName(pass),
-          [m](const fs::path& p, const Frame& f) { writePng(p, encodeSrgb8(f.*m)); }};
+  return {pass, key,
+          [m](const fs::path& p, const FrameView& v) { writePng(p, encodeSrgb8(v.frame.*m)); }};
 }
 
 FrameEncoder depthPng(Pass pass, double scale) {
   const ImageF Frame::*m = floatMember(pass);
-  return {
-      pass, fmt::format("png16-depth-x{}/{}", scale, passName(pass)),
-      [m, scale](const fs::path& p, const Frame& f) { writePng(p, encodeDepth16(f.*m, scale)); }};
+  return {pass, fmt::format("png16-depth-x{}/{}", scale, passName(pass)),
+          [m, scale](const fs::path& p, const FrameView& v) {
+            writePng(p, encodeDepth16(v.frame.*m, scale));
+          }};
 }
 
 FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names) {
@@ -135,23 +148,23 @@ FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names) {
   std::string key = "exr-float";
   for (const auto& c : channel_names) key += "-" + c;
   return {pass, key + "/" + passName(pass),
-          [m, names = std::move(channel_names)](const fs::path& p, const Frame& f) {
-            writeExr(p, f.*m, names);
+          [m, names = std::move(channel_names)](const fs::path& p, const FrameView& v) {
+            writeExr(p, v.frame.*m, names);
           }};
 }
 
 FrameEncoder normalPng(Pass pass) {
   const ImageF Frame::*m = floatMember(pass);
   return {pass, "png16-normal/" + passName(pass),
-          [m](const fs::path& p, const Frame& f) { writePng(p, encodeNormal16(f.*m)); }};
+          [m](const fs::path& p, const FrameView& v) { writePng(p, encodeNormal16(v.frame.*m)); }};
 }
 
 FrameEncoder rawPng(Pass pass) {
   std::string key = "png-raw/" + passName(pass);
   if (pass == Pass::Label)
-    return {pass, key, [](const fs::path& p, const Frame& f) { writePng(p, f.label); }};
+    return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.label); }};
   INET_CHECK_MSG(pass == Pass::Instance, "rawPng takes the label or instance pass");
-  return {pass, key, [](const fs::path& p, const Frame& f) { writePng(p, f.instance); }};
+  return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.instance); }};
 }
 
 std::string formatFixed(double v, int decimals) {

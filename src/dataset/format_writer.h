@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,16 +20,26 @@
 
 #include "render/camera.h"
 #include "render/frame.h"
+#include "render/lens.h"
 #include "trajectory/trajectory.h"
 
 namespace inet {
 
 /// What to write, and where. Frame k of the sequence is pose k of the trajectory.
 struct SequenceSpec {
-  std::filesystem::path dir;     ///< the sequence folder (the EuRoC "mav0" equivalent)
-  std::string name;              ///< for "# file: '<name>'" lines; empty = last part of dir
-  CameraIntrinsics intrinsics;   ///< renderer convention; files state the OpenCV one
+  std::filesystem::path dir;    ///< the sequence folder (the EuRoC "mav0" equivalent)
+  std::string name;             ///< for "# file: '<name>'" lines; empty = last part of dir
+  CameraIntrinsics intrinsics;  ///< renderer convention; files state the OpenCV one
+  /// The lens the frames were rendered with; unset = the ideal pinhole of `intrinsics`. If set,
+  /// its K must equal `intrinsics` (a mismatch is a bug and aborts). It decides the camera model
+  /// every calibration file states (docs/output.md section 2) and which depth the depth PNGs
+  /// hold: z-depth for pinhole and thin lens, the Euclidean ray distance for fisheye and
+  /// panorama, whose frames carry the ray_depth pass instead of depth (docs/cameras.md 4).
+  std::optional<LensModel> lens;
   PassMask passes = kAllPasses;  ///< passes written to disk (the frames must carry them)
+  /// Also write the rgb pass (frame.rgb, linear radiance before any camera response) as a
+  /// float32 EXR with channels R, G, B next to the colour PNG (ASL cam0/data/<t>.exr).
+  bool rgb_exr = false;
   /// Caller's provenance (seed, versions, settings), merged into meta.json. Must be an object and
   /// must not use the writer's own keys (docs/output.md section 6); doing so is a bug (aborts).
   nlohmann::json meta = nlohmann::json::object();
@@ -43,13 +54,24 @@ struct SequenceContext {
   Trajectory traj;
   /// spec.name, or the sequence folder's last component.
   std::string sequenceName() const;
+  /// spec.lens, or the ideal pinhole of spec.intrinsics.
+  LensModel lens() const;
+  /// The pass the depth PNGs encode: DepthZ for pinhole and thin lens, DepthRay for fisheye
+  /// and panorama (groundTruthDepthKind).
+  Pass depthPngPass() const;
+};
+
+/// What the encoders of one frame read: the frame and the colour image its 8-bit PNGs show.
+struct FrameView {
+  const Frame& frame;         ///< every pass; frame.rgb is linear radiance
+  const ImageF& rgb_display;  ///< frame.rgb after the camera response; frame.rgb if none
 };
 
 /// How one frame channel becomes one file. `key` names the resulting bytes: two outputs with the
 /// same key are identical files, so the sequence writer encodes once and links (or copies) the
 /// result, e.g. ASL cam0 and TUM rgb.
 struct FrameEncoder {
-  using Write = std::function<void(const std::filesystem::path&, const Frame&)>;
+  using Write = std::function<void(const std::filesystem::path&, const FrameView&)>;
   Pass pass;        ///< the frame channel it reads
   std::string key;  ///< e.g. "png8-srgb/rgb", "png16-depth-x5000/depth"
   Write write;      ///< encodes the channel and writes the file atomically
@@ -108,7 +130,8 @@ std::vector<std::string> parseFormatList(const std::string& list);
 // ---- helpers shared by the format writers -------------------------------------------------
 
 /// Encoders (the pass decides which Frame member is read; a pass of the wrong kind is a bug).
-FrameEncoder srgbPng(Pass pass);                 ///< Rgb, Albedo: 8-bit sRGB PNG
+/// Rgb (reads FrameView::rgb_display), Albedo, Shading: 8-bit sRGB PNG.
+FrameEncoder srgbPng(Pass pass);
 FrameEncoder depthPng(Pass pass, double scale);  ///< DepthZ, DepthRay: 16-bit PNG, see depthToU16
 FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names);  ///< float32 EXR
 FrameEncoder normalPng(Pass pass);  ///< Normal: 16-bit RGB PNG, see encodeNormal16

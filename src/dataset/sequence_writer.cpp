@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -66,12 +67,16 @@ void checkImage(const Image<T>& img, Pass pass, int channels, const CameraIntrin
 
 /// A frame that does not match the spec is a caller bug (the renderer was asked for these
 /// passes at this size), not bad user input.
-void checkFrame(const Frame& f, PassMask mask, const CameraIntrinsics& K, size_t k) {
+void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const CameraIntrinsics& K,
+                size_t k) {
   for (Pass p : kAllPassList)
     INET_CHECK_MSG(
         !has(mask, p) || has(f.passes, p),
         fmt::format("frame {} lacks pass '{}' that the sequence writes", k, passName(p)));
-  if (has(mask, Pass::Rgb)) checkImage(f.rgb, Pass::Rgb, 3, K, k);
+  if (has(mask, Pass::Rgb)) {
+    checkImage(f.rgb, Pass::Rgb, 3, K, k);
+    checkImage(rgb_display, Pass::Rgb, 3, K, k);
+  }
   if (has(mask, Pass::DepthZ)) checkImage(f.depth_z, Pass::DepthZ, 1, K, k);
   if (has(mask, Pass::DepthRay)) checkImage(f.depth_ray, Pass::DepthRay, 1, K, k);
   if (has(mask, Pass::Normal)) checkImage(f.normal, Pass::Normal, 3, K, k);
@@ -79,6 +84,26 @@ void checkFrame(const Frame& f, PassMask mask, const CameraIntrinsics& K, size_t
   if (has(mask, Pass::Instance)) checkImage(f.instance, Pass::Instance, 1, K, k);
   if (has(mask, Pass::Albedo)) checkImage(f.albedo, Pass::Albedo, 3, K, k);
   if (has(mask, Pass::Shading)) checkImage(f.shading, Pass::Shading, 3, K, k);
+}
+
+bool sameIntrinsics(const CameraIntrinsics& a, const CameraIntrinsics& b) {
+  return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy &&
+         a.cx == b.cx && a.cy == b.cy;
+}
+
+/// The lens checks that need no disk: valid model, and no z-depth pass where z is undefined.
+void validateLens(const SequenceSpec& spec) {
+  if (!spec.lens) return;
+  INET_CHECK_MSG(sameIntrinsics(spec.lens->K, spec.intrinsics),
+                 "SequenceSpec::lens->K must equal SequenceSpec::intrinsics");
+  spec.lens->validate("camera");
+  if (groundTruthDepthKind(spec.lens->type) == DepthKind::RayDistance &&
+      has(spec.passes, Pass::DepthZ))
+    throw InputError("", "--passes",
+                     fmt::format("'depth' (z-depth) is undefined for a {} lens, whose image holds "
+                                 "directions at and beyond 90 degrees from the axis; select "
+                                 "'ray_depth' (its depth PNG and EXR hold the ray distance)",
+                                 lensTypeName(spec.lens->type)));
 }
 
 /// Gives `dst` the bytes of `src` atomically: a hard link (no extra disk space), or a copy where
@@ -93,14 +118,37 @@ void linkOrCopy(const fs::path& src, const fs::path& dst) {
   });
 }
 
-json cameraJson(const CameraIntrinsics& K) {
+/// The projection of each lens in words, renderer convention (docs/cameras.md section 3).
+const char* projectionText(LensType type) {
+  switch (type) {
+    case LensType::Pinhole:
+    case LensType::ThinLens:
+      return "perspective: u = fx X/Z + cx, v = fy Y/Z + cy (then radial-tangential distortion)";
+    case LensType::Fisheye:
+      return "equidistant: r = f theta, r = |(u - cx, v - cy)| in pixels, theta = angle from "
+             "+z in radians, f = fx = fy pixels per radian; rays up to theta = fov_deg / 2";
+    case LensType::Panorama:
+      return "equirectangular: longitude = (u - cx) / fx (0 = +z forward, +pi/2 = +x right), "
+             "latitude = (v - cy) / fy (-pi/2 = -y up); ray = (cos lat sin lon, sin lat, "
+             "cos lat cos lon)";
+  }
+  return "";
+}
+
+json cameraJson(const LensModel& lens) {
+  const CameraIntrinsics& K = lens.K;
+  const OpenCvCamera cv = toOpenCv(lens);
+  const char* distortion = cv.model == "radtan"        ? "radial-tangential"
+                           : cv.model == "equidistant" ? "equidistant"
+                                                       : "none";
   return {
       {"width", K.width},
       {"height", K.height},
-      {"lens", "pinhole"},
-      {"distortion_model", "radial-tangential"},
-      {"distortion_coefficients", {0.0, 0.0, 0.0, 0.0, 0.0}},
-      {"opencv", {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cxOpenCV()}, {"cy", K.cyOpenCV()}}},
+      {"lens", lensTypeName(lens.type)},
+      {"projection", projectionText(lens.type)},
+      {"distortion_model", distortion},
+      {"distortion_coefficients", cv.distortion},
+      {"opencv", {{"fx", cv.fx}, {"fy", cv.fy}, {"cx", cv.cx}, {"cy", cv.cy}}},
       {"renderer", {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cx}, {"cy", K.cy}}},
       {"pixel_centre_convention",
        "opencv: pixel (i, j) is centred at (i, j); this is what every calibration file of the "
@@ -109,12 +157,46 @@ json cameraJson(const CameraIntrinsics& K) {
   };
 }
 
-json encodingsJson() {
-  return {
-      {"rgb", "8-bit sRGB (IEC 61966-2-1 OETF of linear radiance clamped to [0, 1])"},
-      {"depth_png",
-       "z-depth along the optical axis, uint16, value = round(z_m * scale), scale "
-       "1000 (asl depth0, mm) or 5000 (tum depth); 0 = no surface or too far"},
+/// meta.json "lens": the model and every parameter it uses.
+json lensJson(const LensModel& lens) {
+  json j = {{"type", lensTypeName(lens.type)},
+            {"depth", groundTruthDepthKind(lens.type) == DepthKind::ZDepth
+                          ? "z-depth along the optical axis"
+                          : "Euclidean ray distance from the camera centre"}};
+  switch (lens.type) {
+    case LensType::Pinhole:
+      break;
+    case LensType::ThinLens:
+      j["aperture_radius_m"] = lens.aperture_radius_m;
+      j["focus_distance_m"] = lens.focus_distance_m;
+      break;
+    case LensType::Fisheye:
+      j["projection"] = "equidistant, r = f theta";
+      j["fov_deg"] = lens.fisheye_fov_deg;
+      j["focal_px_per_rad"] = lens.K.fx;
+      break;
+    case LensType::Panorama:
+      j["projection"] = "equirectangular";
+      // 360 x 180 for the full sphere; rounded so that 2 pi / (2 pi) prints as 360, not 359.99..
+      auto deg = [](double rad) { return std::round(rad * 180 / std::numbers::pi * 1e9) / 1e9; };
+      j["fov_deg"] = {deg(lens.K.width / lens.K.fx), deg(lens.K.height / lens.K.fy)};
+      break;
+  }
+  return j;
+}
+
+json encodingsJson(const SequenceContext& c) {
+  const bool z = c.depthPngPass() == Pass::DepthZ;
+  const std::string depth = z ? "z-depth along the optical axis"
+                              : "Euclidean ray distance camera centre to surface (a " +
+                                    std::string(lensTypeName(c.lens().type)) +
+                                    " lens has no usable z-depth)";
+  json j = {
+      {"rgb",
+       "8-bit sRGB (IEC 61966-2-1 OETF of the colour clamped to [0, 1]; the camera response, if "
+       "any, is applied to the linear radiance first)"},
+      {"depth_png", depth + ", uint16, value = round(depth_m * scale), scale 1000 (asl depth0, "
+                            "mm) or 5000 (tum depth); 0 = no surface or too far"},
       {"ray_depth_exr",
        "Euclidean distance camera centre to surface, float32 metres, channel Z; "
        "0 = no surface"},
@@ -127,6 +209,11 @@ json encodingsJson() {
        "T_world_camera: camera x right, y down, z forward (OpenCV); world right-handed, "
        "z up, metres; quaternions Hamilton with w >= 0"},
   };
+  if (c.spec.rgb_exr)
+    j["rgb_exr"] =
+        "asl cam0/data/<t>.exr: linear RGB radiance as rendered (before exposure, sensor noise, "
+        "tone curve and sRGB encoding), float32, channels R, G, B";
+  return j;
 }
 
 }  // namespace
@@ -167,8 +254,19 @@ SequenceWriter::SequenceWriter(SequenceSpec spec, const Trajectory& traj,
   INET_CHECK_MSG(spec.meta.is_object() || spec.meta.is_null(),
                  "SequenceSpec::meta must be an object");
   validateTrajectory(traj);
+  validateLens(spec);
+  if (spec.rgb_exr && !has(spec.passes, Pass::Rgb))
+    throw InputError("", "--hdr", "needs the rgb pass in --passes");
   ctx_ = std::make_shared<const SequenceContext>(SequenceContext{std::move(spec), traj});
-  for (const auto& name : formats) formats_.push_back(createFormat(name, ctx_));
+  bool rgb_exr_written = false;
+  for (const auto& name : formats) {
+    formats_.push_back(createFormat(name, ctx_));
+    for (const auto& o : formats_.back()->outputs())
+      rgb_exr_written |= o.encoder.pass == Pass::Rgb && o.suffix.ends_with(".exr");
+  }
+  if (ctx_->spec.rgb_exr && !rgb_exr_written)
+    throw InputError("", "--hdr",
+                     "the linear EXR goes to the ASL cam0 folder: add asl to --format");
   const fs::path& dir = ctx_->spec.dir;
   checkOutputFolder(dir);
   const std::string meta = metaJson();
@@ -218,9 +316,10 @@ bool SequenceWriter::frameComplete(size_t k) const {
   return true;
 }
 
-void SequenceWriter::writeFrame(size_t k, const Frame& frame) const {
+void SequenceWriter::writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display) const {
   INET_CHECK_MSG(k < frameCount(), fmt::format("frame {} of {}", k, frameCount()));
-  checkFrame(frame, ctx_->spec.passes, ctx_->spec.intrinsics, k);
+  const FrameView view{frame, rgb_display ? *rgb_display : frame.rgb};
+  checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k);
   // One job per distinct encoding: outputs with the same key (ASL cam0 and TUM rgb) are encoded
   // once and the other names get a hard link or a copy of the finished file.
   struct Job {
@@ -240,7 +339,7 @@ void SequenceWriter::writeFrame(size_t k, const Frame& frame) const {
   // Jobs are independent: run them in parallel (TBB rethrows the first exception here).
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t i) {
     const Job& job = jobs[i];
-    job.encoder->write(job.paths[0], frame);
+    job.encoder->write(job.paths[0], view);
     for (size_t j = 1; j < job.paths.size(); ++j) linkOrCopy(job.paths[0], job.paths[j]);
   });
 }
@@ -275,8 +374,9 @@ std::string SequenceWriter::metaJson() const {
   put("frame_count", c.traj.size());
   put("first_timestamp_ns", c.traj.poses.front().t_ns);
   put("last_timestamp_ns", c.traj.poses.back().t_ns);
-  put("camera", cameraJson(c.spec.intrinsics));
-  put("encodings", encodingsJson());
+  put("camera", cameraJson(c.lens()));
+  put("lens", lensJson(c.lens()));
+  put("encodings", encodingsJson(c));
   return j.dump(2) + "\n";
 }
 

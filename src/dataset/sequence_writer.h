@@ -28,7 +28,9 @@ class SequenceWriter {
  public:
   /// Validates everything before writing anything: format names (InputError field "--format"
   /// listing the valid ones), trajectory (non-empty, finite poses, timestamps >= 0 and strictly
-  /// increasing), intrinsics, what each format needs (e.g. TUM: rgb + depth passes, 1 us apart),
+  /// increasing), intrinsics and lens (no z-depth pass for fisheye or panorama, field
+  /// "--passes"), rgb_exr (needs the rgb pass and the asl format, field "--hdr"), what each
+  /// format needs (e.g. TUM: rgb + depth passes, 1 us apart),
   /// and that spec.dir can be created and written (InputError naming it, field "--out"). Then
   /// creates the folders, removes stale "*.tmp-*" files of a killed run (if
   /// spec.remove_stale_temporaries) and writes meta.json.
@@ -50,8 +52,10 @@ class SequenceWriter {
   /// Encodes and writes every file of frame k, files in parallel (TBB). Thread-safe for
   /// different k; writing the same k from two threads at once is not allowed. The frame must
   /// carry every pass of spec.passes at the size of spec.intrinsics (a violation is a bug and
-  /// aborts). File errors throw InputError naming the file.
-  void writeFrame(size_t k, const Frame& frame) const;
+  /// aborts). frame.rgb is linear radiance (what spec.rgb_exr writes); `rgb_display`, if given,
+  /// is the same image after the camera response (exposure, noise, tone curve), which the 8-bit
+  /// colour PNGs encode instead of frame.rgb. File errors throw InputError naming the file.
+  void writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display = nullptr) const;
   /// Writes the index, list and calibration files of every format, atomically. Call once after
   /// all frames; throws InputError naming the first missing frame file if a frame is incomplete.
   void finish() const;

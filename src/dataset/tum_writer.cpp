@@ -13,10 +13,14 @@ class TumWriter final : public FormatWriter {
  public:
   explicit TumWriter(std::shared_ptr<const SequenceContext> c) : FormatWriter(std::move(c)) {
     const PassMask passes = ctx().spec.passes;
-    if (!has(passes, Pass::Rgb) || !has(passes, Pass::DepthZ))
-      throw InputError(
-          "", "--passes",
-          "format 'tum' needs the 'rgb' and 'depth' passes (colour and z-depth images)");
+    const Pass depth = ctx().depthPngPass();
+    if (!has(passes, Pass::Rgb) || !has(passes, depth))
+      throw InputError("", "--passes",
+                       depth == Pass::DepthZ
+                           ? "format 'tum' needs the 'rgb' and 'depth' passes (colour and z-depth "
+                             "images)"
+                           : "format 'tum' needs the 'rgb' and 'ray_depth' passes (colour and "
+                             "depth images; a fisheye or panorama has no z-depth)");
     const Trajectory& traj = ctx().traj;
     stems_.reserve(traj.size());
     for (size_t k = 0; k < traj.size(); ++k) {
@@ -29,7 +33,7 @@ class TumWriter final : public FormatWriter {
                         traj.poses[k - 1].t_ns, traj.poses[k].t_ns, stems_[k]));
     }
     addOutput("rgb", ".png", srgbPng(Pass::Rgb));
-    addOutput("depth", ".png", depthPng(Pass::DepthZ, kDepthScaleTum));
+    addOutput("depth", ".png", depthPng(depth, kDepthScaleTum));
   }
 
   std::string name() const override { return "tum"; }
@@ -71,13 +75,43 @@ class TumWriter final : public FormatWriter {
     return s;
   }
 
+  /// Our side file with the lens (TUM tools read none and assume a 525 px pinhole): two lines,
+  /// a comment naming the values, then the values (OpenCV convention).
   std::string cameraText() const {
-    const CameraIntrinsics& K = ctx().spec.intrinsics;
-    return fmt::format(
-        "# fx fy cx cy k1 k2 p1 p2 k3 (pixels, OpenCV convention: pixel centres at integer "
-        "coordinates; image {}x{})\n{} {} {} {} 0.0 0.0 0.0 0.0 0.0\n",
-        K.width, K.height, formatFloat(K.fx), formatFloat(K.fy), formatFloat(K.cxOpenCV()),
-        formatFloat(K.cyOpenCV()));
+    const LensModel lens = ctx().lens();
+    const OpenCvCamera cv = toOpenCv(lens);
+    const std::string image = fmt::format("image {}x{}", cv.width, cv.height);
+    const std::string k = fmt::format("{} {} {} {}", formatFloat(cv.fx), formatFloat(cv.fy),
+                                      formatFloat(cv.cx), formatFloat(cv.cy));
+    const std::string convention =
+        "pixels, OpenCV convention: pixel centres at integer coordinates";
+    switch (lens.type) {
+      case LensType::Pinhole:
+      case LensType::ThinLens: {
+        std::string thin;
+        if (lens.type == LensType::ThinLens)
+          thin =
+              fmt::format("; thin lens: aperture radius {} m, focus distance {} m",
+                          formatFloat(lens.aperture_radius_m), formatFloat(lens.focus_distance_m));
+        std::string d;
+        for (double c : cv.distortion) d.append(" ").append(formatFloat(c));
+        return fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 ({}; {}{})\n{}{}\n", convention, image,
+                           thin, k, d);
+      }
+      case LensType::Fisheye:
+        return fmt::format(
+            "# fx fy cx cy k1 k2 k3 k4 (NOT a pinhole: equidistant fisheye r = f * theta up to a "
+            "field of view of {} deg, OpenCV cv::fisheye / Kalibr pinhole-equi; {}; {}; depth/ "
+            "holds the ray distance)\n{} 0.0 0.0 0.0 0.0\n",
+            formatFloat(lens.fisheye_fov_deg), convention, image, k);
+      case LensType::Panorama:
+        return fmt::format(
+            "# fu fv cu cv (NOT a pinhole: equirectangular panorama, longitude = (i - cu) / fu "
+            "(0 = +z, +pi/2 = +x), latitude = (j - cv) / fv (-pi/2 = -y, up), radians; {}; {}; "
+            "depth/ holds the ray distance)\n{}\n",
+            convention, image, k);
+    }
+    return "";
   }
 
   std::vector<std::string> stems_;

@@ -2,16 +2,25 @@
 // killed mid-sequence resumes to the same bytes, and memory does not grow with sequence length.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <numbers>
 #include <set>
+#include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_util.h"
-#include "dataset/image_io.h"
+#include "core/atomic_file.h"
+#include "core/color.h"
+#include "core/image_io.h"
 
 namespace fs = std::filesystem;
 
@@ -202,6 +211,236 @@ TEST(Generate, KilledRunResumesToIdenticalFolder) {
   auto got = readTree(out);
   ASSERT_EQ(got.size(), expected.size());
   for (const auto& [name, bytes] : expected) EXPECT_TRUE(got[name] == bytes) << name << " differs";
+}
+
+// ---- lenses: fisheye and panorama through the whole pipeline -------------------------------
+
+std::vector<std::string> lines(const fs::path& p) {
+  std::vector<std::string> out;
+  std::string text = readTextFile(p), line;
+  for (std::istringstream in(text); std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+bool hasLine(const fs::path& p, const std::string& line) {
+  auto l = lines(p);
+  return std::find(l.begin(), l.end(), line) != l.end();
+}
+
+/// The four numbers of the "intrinsics: [fu, fv, cu, cv] #..." line of a sensor.yaml.
+std::vector<double> yamlIntrinsics(const fs::path& p) {
+  for (const auto& l : lines(p)) {
+    if (l.rfind("intrinsics: [", 0) != 0) continue;
+    std::vector<double> v;
+    std::string list = l.substr(13, l.find(']') - 13);
+    for (size_t b = 0; b < list.size();) {
+      size_t e = std::min(list.find(',', b), list.size());
+      v.push_back(std::stod(list.substr(b, e - b)));
+      b = e + 1;
+    }
+    return v;
+  }
+  return {};
+}
+
+/// The ASL depth PNG (mm) of every frame equals the ray depth EXR (m): both hold the Euclidean
+/// ray distance. Returns the number of pixels with depth.
+size_t expectPngHoldsRayDistance(const fs::path& seq) {
+  size_t valid = 0;
+  for (const auto& e : fs::directory_iterator(seq / "depth0/data")) {
+    if (e.path().extension() != ".png") continue;
+    ImageU16 mm = readPng16(e.path());
+    ImageF ray = readExr(fs::path(e.path()).replace_extension(".exr"), {"Z"});
+    for (size_t i = 0; i < mm.pixelCount(); ++i) {
+      EXPECT_NEAR(mm.data[i], std::floor(ray.data[i] * 1000.0 + 0.5), 1.0) << e.path() << " " << i;
+      valid += mm.data[i] != 0;
+    }
+  }
+  return valid;
+}
+
+TEST(Generate, FisheyeWritesEquidistantCalibrationAndEveryPass) {
+  TempDir dir("gen_fisheye");
+  RunResult r =
+      runInterinet("generate --lens fisheye --width 64 --frames 2 --spp 1 --no-progress --out " +
+                   (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fs::path s = seqDir(dir / "out");
+  for (const char* folder : {"cam0", "depth0", "normal0", "albedo0", "shading0", "label0"}) {
+    const fs::path yaml = s / folder / "sensor.yaml";
+    EXPECT_TRUE(hasLine(yaml, "resolution: [64, 64]")) << folder;
+    EXPECT_TRUE(hasLine(yaml, "camera_model: pinhole")) << folder;
+    EXPECT_TRUE(hasLine(yaml, "distortion_model: equidistant")) << folder;
+    EXPECT_TRUE(hasLine(yaml, "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]")) << folder;
+    EXPECT_NE(readTextFile(yaml).find("r = f * theta"), std::string::npos) << folder;
+    std::vector<double> k = yamlIntrinsics(yaml);
+    ASSERT_EQ(k.size(), 4u) << folder;
+    const double f = (64 / 2.0) / (std::numbers::pi / 2);  // 180 deg across 64 px
+    EXPECT_NEAR(k[0], f, 1e-9);
+    EXPECT_NEAR(k[1], f, 1e-9);
+    EXPECT_EQ(k[2], 31.5);
+    EXPECT_EQ(k[3], 31.5);
+  }
+  for (auto [folder, suffix] :
+       std::vector<std::pair<const char*, const char*>>{{"cam0/data", ".png"},
+                                                        {"depth0/data", ".png"},
+                                                        {"depth0/data", ".exr"},
+                                                        {"normal0/data", ".png"},
+                                                        {"albedo0/data", ".png"},
+                                                        {"shading0/data", ".png"},
+                                                        {"label0/data", "_nyu.png"},
+                                                        {"label0/data", "_instance.png"},
+                                                        {"rgb", ".png"},
+                                                        {"depth", ".png"}})
+    EXPECT_EQ(filesIn(s / folder, suffix), 2u) << folder << " " << suffix;
+  auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
+  EXPECT_EQ(meta["lens"]["type"], "fisheye");
+  EXPECT_EQ(meta["lens"]["fov_deg"], 180.0);
+  EXPECT_EQ(meta["camera"]["distortion_model"], "equidistant");
+  EXPECT_NE(lines(s / "camera.txt")[0].find("NOT a pinhole"), std::string::npos) << "TUM side";
+  // depth PNG = ray distance (a z-depth PNG would be far smaller near the circle's edge); the
+  // corners lie outside the 180 degree image circle: no ray, depth 0
+  const size_t valid = expectPngHoldsRayDistance(s);
+  EXPECT_LT(valid, 2u * 64 * 64);
+  EXPECT_GT(valid, 2u * 64 * 64 * 3 / 4);  // the circle covers pi/4 of the square
+  ImageU16 first = readPng16(s / "depth0/data/0000000000000000000.png");
+  EXPECT_EQ(first.at(0, 0), 0);
+  EXPECT_GT(first.at(1, 32), 0) << "85 degrees off axis, still inside the circle";
+}
+
+TEST(Generate, PanoramaWritesEquirectangularCalibration) {
+  TempDir dir("gen_pano");
+  RunResult r = runInterinet(
+      "generate --lens panorama --width 64 --height 32 --frames 2 --spp 1 --no-progress --out " +
+      (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fs::path s = seqDir(dir / "out");
+  const fs::path yaml = s / "cam0/sensor.yaml";
+  EXPECT_TRUE(hasLine(yaml, "camera_model: equirectangular"));
+  EXPECT_TRUE(hasLine(yaml, "resolution: [64, 32]"));
+  EXPECT_NE(readTextFile(yaml).find("NOT a Kalibr camera model"), std::string::npos);
+  for (const auto& l : lines(yaml)) {
+    EXPECT_NE(l.rfind("distortion", 0), 0u) << l;
+    EXPECT_NE(l.rfind("intrinsics", 0), 0u) << l;
+  }
+  EXPECT_TRUE(hasLine(s / "depth0/sensor.yaml", "camera_model: equirectangular"));
+  auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
+  EXPECT_EQ(meta["lens"]["type"], "panorama");
+  EXPECT_EQ(meta["camera"]["lens"], "panorama");
+  EXPECT_EQ(meta["passes"][1], "ray_depth") << "a panorama has no z-depth pass";
+  // the room is closed: every direction, also behind the camera (where z-depth would be
+  // negative), has a ray distance
+  EXPECT_EQ(expectPngHoldsRayDistance(s), 2u * 64 * 32);
+}
+
+TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
+  TempDir dir("gen_badlens");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--lens fisheye --width 64 --height 32", "--height"},
+      {"--lens panorama --width 64 --height 64", "--height"},
+      {"--lens panorama --width 63", "--width"},
+      {"--lens fish", "--lens"},
+      {"--lens fisheye --fisheye-fov 0", "--fisheye-fov"},
+      {"--lens fisheye --fisheye-fov 361", "--fisheye-fov"},
+      {"--lens fisheye --fisheye-fov -90", "--fisheye-fov"},
+      {"--lens fisheye --fx 100", "--fx"},
+      {"--lens panorama --cy 3", "--cy"},
+      {"--lens pinhole --aperture 0.01", "--aperture"},
+      {"--lens fisheye --focus 3", "--focus"},
+      {"--fisheye-fov 90", "--fisheye-fov"},
+      {"--hdr --passes depth", "--hdr"},
+      {"--hdr --format tum", "--hdr"},
+  };
+  for (const auto& [args, flag] : cases) {
+    const fs::path out = dir / "out";
+    RunResult r = runInterinet("generate --frames 1 --spp 1 --no-progress " + args + " --out " +
+                               out.string());
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("error: " + flag + ":", 0), 0u) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args << " wrote output";
+  }
+}
+
+// ---- linear HDR EXR -------------------------------------------------------------------------
+
+TEST(Generate, HdrExrIsTheLinearRadianceBehindThePng) {
+  TempDir dir("gen_hdr");
+  const std::string common = kSmall + "--hdr --frames 2 --spp 2 --tone none ";
+  RunResult a = runInterinet(common + "--exposure-ev 0 --out " + (dir / "a").string());
+  RunResult b = runInterinet(common + "--exposure-ev 2 --out " + (dir / "b").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  fs::path s = seqDir(dir / "a");
+  EXPECT_EQ(filesIn(s / "cam0/data", ".exr"), 2u);
+  EXPECT_EQ(filesIn(s / "rgb", ".exr"), 0u) << "TUM has no EXR";
+  EXPECT_EQ(exrChannelNames(s / "cam0/data/0000000000000000000.exr"),
+            (std::vector<std::string>{"B", "G", "R"}));
+  size_t bright = 0;
+  for (const char* t : {"0000000000000000000", "0000000000040000000"}) {
+    ImageF exr = readExr(s / "cam0/data" / (std::string(t) + ".exr"), {"R", "G", "B"});
+    ImageU8 png = readPng8(s / "cam0/data" / (std::string(t) + ".png"));
+    ASSERT_EQ(exr.width, png.width);
+    ASSERT_EQ(exr.data.size(), png.data.size());
+    for (size_t i = 0; i < exr.data.size(); ++i) {
+      EXPECT_LE(std::abs(int(png.data[i]) - int(linearToSrgb8(exr.data[i]))), 1) << t << " " << i;
+      bright += exr.data[i] > 1.f;
+    }
+    // exposure changes the PNG, never the linear EXR
+    const fs::path sb = seqDir(dir / "b") / "cam0/data";
+    EXPECT_EQ(readTextFile(sb / (std::string(t) + ".exr")),
+              readTextFile(s / "cam0/data" / (std::string(t) + ".exr")));
+    EXPECT_NE(readTextFile(sb / (std::string(t) + ".png")),
+              readTextFile(s / "cam0/data" / (std::string(t) + ".png")));
+  }
+  EXPECT_GT(bright, 0u) << "lamps and sun exceed 1: the EXR must not be clipped";
+  auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
+  EXPECT_TRUE(meta["encodings"].contains("rgb_exr"));
+}
+
+struct FileId {
+  ino_t inode;
+  int64_t mtime_ns;
+  bool operator==(const FileId&) const = default;
+};
+FileId fileId(const fs::path& p) {
+  struct stat st {};
+  EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
+  return {st.st_ino, int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
+}
+
+TEST(Generate, HdrRerunSkipsCompleteFramesAndRedoesAFrameMissingItsExr) {
+  TempDir dir("gen_hdr_resume");
+  const std::string args = kSmall + "--hdr --frames 3 --spp 1 --out " + (dir / "out").string();
+  RunResult first = runInterinet(args);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const fs::path cam = seqDir(dir / "out") / "cam0/data";
+  const std::string t[3] = {"0000000000000000000", "0000000000040000000", "0000000000080000000"};
+  std::map<std::string, FileId> before;
+  for (const auto& e : fs::directory_iterator(cam))
+    before[e.path().filename().string()] = fileId(e.path());
+  ASSERT_EQ(before.size(), 6u);
+  const std::string exr1 = readTextFile(cam / (t[1] + ".exr"));
+  fs::remove(cam / (t[1] + ".exr"));  // frame 1 lacks only its EXR
+
+  RunResult again = runInterinet(args);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("resuming: 2 of 3 frames"), std::string::npos) << again.err;
+  for (int k : {0, 2})
+    for (const char* ext : {".png", ".exr"})
+      EXPECT_TRUE(fileId(cam / (t[k] + ext)) == before[t[k] + ext]) << t[k] << ext << " rewritten";
+  EXPECT_FALSE(fileId(cam / (t[1] + ".png")) == before[t[1] + ".png"]) << "frame 1 re-rendered";
+  EXPECT_EQ(readTextFile(cam / (t[1] + ".exr")), exr1) << "same bytes as the first run";
+
+  // a folder written without --hdr is incomplete for an --hdr run: every frame is redone
+  TempDir dir2("gen_hdr_upgrade");
+  const std::string plain = kSmall + "--frames 2 --spp 1 --out " + (dir2 / "out").string();
+  ASSERT_EQ(runInterinet(plain).exit_code, 0);
+  RunResult hdr =
+      runInterinet(kSmall + "--hdr --frames 2 --spp 1 --out " + (dir2 / "out").string());
+  ASSERT_EQ(hdr.exit_code, 0) << hdr.err;
+  EXPECT_EQ(hdr.err.find("resuming"), std::string::npos) << hdr.err;
+  EXPECT_EQ(filesIn(seqDir(dir2 / "out") / "cam0/data", ".exr"), 2u);
 }
 
 TEST(Generate, CtrlCStopsCleanlyAndResumes) {

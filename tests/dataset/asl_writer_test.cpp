@@ -8,9 +8,13 @@
 #include <cstdlib>
 #include <regex>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "dataset/image_encode.h"
-#include "dataset/image_io.h"
+#include "core/image_io.h"
+#include "dataset/tum_writer.h"
 #include "dataset_test_util.h"
 
 namespace inet {
@@ -176,6 +180,116 @@ TEST_F(AslWriterTest, ImagesDecodeToTheEncodedPasses) {
     for (size_t i = 0; i < n.data.size(); ++i)
       EXPECT_NEAR(n.data[i], f.normal.data[i], 1.0 / 65535 + 1e-7);
     EXPECT_EQ(n.at(0, 0, 0), 0.0f);
+  }
+}
+
+// ---- lenses other than the pinhole ----------------------------------------------------------
+
+constexpr PassMask kRayDepthPasses = kAllPasses & ~static_cast<PassMask>(Pass::DepthZ);
+
+/// Writes the synthetic sequence through `lens` (its K is the image) with the given formats.
+void writeWithLens(const fs::path& dir, const LensModel& lens, PassMask passes,
+                   const std::vector<std::string>& formats = {"asl", "tum"}) {
+  SequenceSpec spec = syntheticSpec(dir, passes);
+  spec.intrinsics = lens.K;
+  spec.lens = lens;
+  Trajectory traj = syntheticTrajectory();
+  SequenceWriter w(spec, traj, formats);
+  for (size_t k = 0; k < w.frameCount(); ++k)
+    w.writeFrame(k, syntheticFrame(lens.K, static_cast<int>(k)));
+  w.finish();
+}
+
+bool hasLine(const fs::path& p, const std::string& line) {
+  auto l = readLines(p);
+  return std::find(l.begin(), l.end(), line) != l.end();
+}
+
+TEST(AslWriterLens, FisheyeIsKalibrEquidistantAndDepthPngHoldsRayDistance) {
+  TempDir tmp("asl_fisheye");
+  const LensModel lens = LensModel::fisheye(20, 200.0);
+  writeWithLens(tmp / "seq", lens, kRayDepthPasses);
+  for (const char* sensor : {"cam0", "depth0", "normal0", "albedo0", "shading0", "label0"}) {
+    const fs::path yaml = tmp / "seq" / sensor / "sensor.yaml";
+    EXPECT_TRUE(hasLine(yaml, "camera_model: pinhole")) << sensor;
+    EXPECT_TRUE(hasLine(yaml, "distortion_model: equidistant")) << sensor;
+    EXPECT_TRUE(hasLine(yaml, "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]")) << sensor;
+    EXPECT_NE(readBytes(yaml).find("field of view 200.0 deg"), std::string::npos) << sensor;
+    // f = 20 px / (200 deg in rad); centre 10 - 0.5
+    EXPECT_TRUE(hasLine(yaml, fmt::format("intrinsics: [{}, {}, 9.5, 9.5] #fu, fv, cu, cv (OpenCV "
+                                          "convention, pixel centres at integers)",
+                                          formatFloat(lens.K.fx), formatFloat(lens.K.fy))))
+        << sensor;
+    if (fs::exists(yaml)) {
+      EXPECT_EQ(yamlKeys(yaml),
+                (std::vector<std::string>{"sensor_type", "comment", "T_BS", "rate_hz", "resolution",
+                                          "camera_model", "intrinsics", "distortion_model",
+                                          "distortion_coefficients"}))
+          << sensor;
+    }
+  }
+  Trajectory traj = syntheticTrajectory();
+  for (size_t k = 0; k < 3; ++k) {
+    const Frame f = syntheticFrame(lens.K, static_cast<int>(k));
+    const std::string t = aslStamp(traj.poses[k].t_ns);
+    EXPECT_EQ(readPng16(tmp / "seq/depth0/data" / (t + ".png")),
+              encodeDepth16(f.depth_ray, kDepthScaleMm))
+        << "the ray distance, not z";
+    EXPECT_EQ(readPng16(tmp / "seq/depth" / (tumStamp(traj.poses[k].t_ns) + ".png")),
+              encodeDepth16(f.depth_ray, kDepthScaleTum));
+  }
+  auto meta = nlohmann::json::parse(readBytes(tmp / "seq/meta.json"));
+  EXPECT_EQ(meta["lens"]["type"], "fisheye");
+  EXPECT_EQ(meta["lens"]["fov_deg"], 200.0);
+  EXPECT_EQ(meta["camera"]["distortion_model"], "equidistant");
+  EXPECT_EQ(readLines(tmp / "seq/camera.txt")[1],
+            fmt::format("{0} {0} 9.5 9.5 0.0 0.0 0.0 0.0", formatFloat(lens.K.fx)));
+}
+
+TEST(AslWriterLens, PanoramaIsEquirectangularWithoutKalibrFields) {
+  TempDir tmp("asl_pano");
+  writeWithLens(tmp / "seq", LensModel::panorama(32, 16), kRayDepthPasses);
+  const fs::path yaml = tmp / "seq/cam0/sensor.yaml";
+  EXPECT_TRUE(hasLine(yaml, "camera_model: equirectangular"));
+  EXPECT_TRUE(hasLine(yaml, "resolution: [32, 16]"));
+  EXPECT_EQ(yamlKeys(yaml), (std::vector<std::string>{"sensor_type", "comment", "T_BS", "rate_hz",
+                                                      "resolution", "camera_model"}));
+  EXPECT_NE(readBytes(yaml).find("NOT a Kalibr camera model"), std::string::npos);
+  EXPECT_NE(readBytes(yaml).find("longitude = (i - 15.5) / "), std::string::npos);
+  auto meta = nlohmann::json::parse(readBytes(tmp / "seq/meta.json"));
+  EXPECT_EQ(meta["lens"]["fov_deg"], nlohmann::json({360.0, 180.0}));
+  EXPECT_EQ(meta["camera"]["distortion_model"], "none");
+  EXPECT_EQ(readLines(tmp / "seq/camera.txt")[0].rfind("# fu fv cu cv (NOT a pinhole", 0), 0u);
+}
+
+TEST(AslWriterLens, ThinLensStatesApertureAndFocusBesideThePinhole) {
+  TempDir tmp("asl_thin");
+  writeWithLens(tmp / "seq", LensModel::thinLens(smallCamera(), 0.004, 1.25), kAllPasses);
+  const fs::path yaml = tmp / "seq/cam0/sensor.yaml";
+  EXPECT_TRUE(hasLine(yaml, "camera_model: pinhole"));
+  EXPECT_TRUE(hasLine(yaml, "distortion_model: radial-tangential"));
+  EXPECT_NE(readBytes(yaml).find("aperture radius 0.004 m, focused on the plane z = 1.25 m"),
+            std::string::npos);
+  auto meta = nlohmann::json::parse(readBytes(tmp / "seq/meta.json"));
+  EXPECT_EQ(meta["lens"]["type"], "thin_lens");
+  EXPECT_EQ(meta["lens"]["aperture_radius_m"], 0.004);
+  EXPECT_EQ(meta["lens"]["focus_distance_m"], 1.25);
+}
+
+TEST(AslWriterLens, ZDepthPassIsRefusedForFisheyeAndPanorama) {
+  for (const LensModel& lens : {LensModel::fisheye(16), LensModel::panorama(32, 16)}) {
+    TempDir tmp("asl_nodepth");
+    SequenceSpec spec = syntheticSpec(tmp / "seq", kAllPasses);
+    spec.intrinsics = lens.K;
+    spec.lens = lens;
+    try {
+      SequenceWriter w(spec, syntheticTrajectory(), {"asl"});
+      ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "--passes");
+      EXPECT_NE(std::string(e.what()).find("ray_depth"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(tmp / "seq"));
   }
 }
 

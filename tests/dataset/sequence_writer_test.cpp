@@ -9,6 +9,10 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "dataset/asl_writer.h"
+#include "dataset/image_encode.h"
+#include "core/image_io.h"
+#include "dataset/tum_writer.h"
 #include "dataset_test_util.h"
 
 namespace inet {
@@ -212,6 +216,37 @@ TEST(SequenceWriter, MetaJsonStatesBothIntrinsicConventionsAndCallerFields) {
   EXPECT_DOUBLE_EQ(cam["opencv"]["fy"].get<double>(), 21.5);
   EXPECT_TRUE(cam["pixel_centre_convention"].is_string());
   for (double d : cam["distortion_coefficients"]) EXPECT_EQ(d, 0.0);
+}
+
+// --hdr: the linear radiance goes to cam0/data/<t>.exr; the PNGs show the display image.
+TEST(SequenceWriter, RgbExrHoldsLinearRadianceWhilePngsShowTheDisplayImage) {
+  TempDir tmp("rgb_exr");
+  const fs::path dir = tmp / "seq";
+  SequenceSpec spec = syntheticSpec(dir);
+  spec.rgb_exr = true;
+  const Trajectory traj = syntheticTrajectory();
+  SequenceWriter w(spec, traj, {"asl", "tum"});
+  const Frame f = syntheticFrame(smallCamera(), 0);
+  ImageF display = f.rgb;
+  for (float& v : display.data) v = 0.5f * v;  // e.g. -1 EV
+  w.writeFrame(0, f, &display);
+  const std::string t = aslStamp(traj.poses[0].t_ns);
+  EXPECT_EQ(readExr(dir / "cam0/data" / (t + ".exr"), {"R", "G", "B"}), f.rgb);
+  EXPECT_EQ(readPng8(dir / "cam0/data" / (t + ".png")), encodeSrgb8(display));
+  EXPECT_EQ(readPng8(dir / "rgb" / (tumStamp(traj.poses[0].t_ns) + ".png")), encodeSrgb8(display));
+  EXPECT_TRUE(w.frameComplete(0));
+  fs::remove(dir / "cam0/data" / (t + ".exr"));
+  EXPECT_FALSE(w.frameComplete(0)) << "the EXR is part of the frame";
+  auto j = nlohmann::json::parse(readBytes(dir / "meta.json"));
+  EXPECT_TRUE(j["encodings"].contains("rgb_exr"));
+
+  spec.dir = tmp / "tum_only";
+  EXPECT_NE(messageOf([&] { SequenceWriter(spec, traj, {"tum"}); }).find("--hdr"),
+            std::string::npos);
+  spec.passes = static_cast<PassMask>(Pass::DepthZ);
+  EXPECT_NE(messageOf([&] { SequenceWriter(spec, traj, {"asl"}); }).find("--hdr"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(tmp / "tum_only"));
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include <set>
 
 #include "core/error.h"
-#include "dataset/image_io.h"
+#include "core/image_io.h"
 #include "dataset_test_util.h"
 
 namespace inet {
