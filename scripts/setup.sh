@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
-  libembree-dev libtbb-dev libeigen3-dev libassimp-dev libopenexr-dev libpng-dev
+  libembree-dev libtbb-dev libeigen3-dev libassimp-dev libopenexr-dev libpng-dev libjpeg-dev
   nlohmann-json3-dev libpugixml-dev libcli11-dev libfmt-dev libspdlog-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -1,6 +1,11 @@
-#include "dataset/image_io.h"
+#include "core/image_io.h"
 
 #include <png.h>
+
+#include <cstdio>  // before jpeglib.h, which needs FILE and size_t declared
+
+#include <jerror.h>
+#include <jpeglib.h>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -171,6 +176,76 @@ Image<T> readPngAny(const fs::path& path) {
   return img;
 }
 
+// ---- JPEG ----------------------------------------------------------------------------------
+
+/// libjpeg's error manager plus the jump target and the first message. libjpeg's default
+/// error_exit calls exit(); ours longjmps back into the reading function instead.
+struct JpegErrorSink {
+  jpeg_error_mgr mgr;
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX] = "unknown libjpeg error";
+};
+
+[[noreturn]] void onJpegError(j_common_ptr cinfo) {
+  auto* sink = reinterpret_cast<JpegErrorSink*>(cinfo->err);
+  (*cinfo->err->format_message)(cinfo, sink->message);
+  std::longjmp(sink->jump, 1);
+}
+
+/// libjpeg only *warns* about missing or garbled entropy-coded data and then pads the image with
+/// grey; those warnings are errors for us (a truncated texture must not render silently). Other
+/// warnings (e.g. stray bytes before a marker, common in camera files) are ignored.
+void onJpegMessage(j_common_ptr cinfo, int level) {
+  if (level >= 0) return;  // trace messages
+  switch (cinfo->err->msg_code) {
+    case JWRN_JPEG_EOF:
+    case JWRN_HIT_MARKER:
+    case JWRN_HUFF_BAD_CODE:
+    case JWRN_MUST_RESYNC:
+      onJpegError(cinfo);
+    default:
+      break;
+  }
+}
+
+/// Owns the FILE* and the decompressor so that every exit path releases them.
+struct JpegHandle {
+  FILE* fp = nullptr;
+  jpeg_decompress_struct cinfo;
+  JpegErrorSink sink;
+  bool created = false;
+
+  JpegHandle() { std::memset(&cinfo, 0, sizeof cinfo); }
+  ~JpegHandle() {
+    if (created) jpeg_destroy_decompress(&cinfo);
+    if (fp) std::fclose(fp);
+  }
+};
+
+// As for PNG: the functions calling setjmp hold no object with a destructor.
+bool readJpegHeader(JpegHandle& h) {
+  h.cinfo.err = jpeg_std_error(&h.sink.mgr);
+  h.sink.mgr.error_exit = onJpegError;
+  h.sink.mgr.emit_message = onJpegMessage;
+  if (setjmp(h.sink.jump)) return false;
+  jpeg_create_decompress(&h.cinfo);
+  h.created = true;
+  jpeg_stdio_src(&h.cinfo, h.fp);
+  jpeg_read_header(&h.cinfo, TRUE);
+  return true;
+}
+
+bool readJpegPixels(JpegHandle& h, uint8_t* dst, size_t stride) {
+  if (setjmp(h.sink.jump)) return false;
+  jpeg_start_decompress(&h.cinfo);
+  while (h.cinfo.output_scanline < h.cinfo.output_height) {
+    JSAMPROW row = dst + stride * h.cinfo.output_scanline;
+    jpeg_read_scanlines(&h.cinfo, &row, 1);
+  }
+  jpeg_finish_decompress(&h.cinfo);
+  return true;
+}
+
 // ---- EXR -----------------------------------------------------------------------------------
 
 void checkChannelNames(const fs::path& path, const std::vector<std::string>& names) {
@@ -199,6 +274,35 @@ ImageU8 readPng8(const fs::path& path) {
 }
 ImageU16 readPng16(const fs::path& path) {
   return readPngAny<uint16_t>(path);
+}
+
+ImageU8 readJpeg8(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(path.string(), "", "is a folder, not a JPEG");
+  JpegHandle h;
+  h.fp = std::fopen(path.c_str(), "rb");
+  if (!h.fp)
+    throw InputError(path.string(), "", std::string("cannot open: ") + std::strerror(errno));
+  if (!readJpegHeader(h))
+    throw InputError(path.string(), "", std::string("bad JPEG: ") + h.sink.message);
+  switch (h.cinfo.jpeg_color_space) {
+    case JCS_GRAYSCALE:
+      h.cinfo.out_color_space = JCS_GRAYSCALE;
+      break;
+    case JCS_YCbCr:
+    case JCS_RGB:
+      h.cinfo.out_color_space = JCS_RGB;
+      break;
+    default:
+      throw InputError(path.string(), "",
+                       "CMYK/YCCK JPEGs are not supported (convert the file to RGB)");
+  }
+  jpeg_calc_output_dimensions(&h.cinfo);
+  ImageU8 img(static_cast<int>(h.cinfo.output_width), static_cast<int>(h.cinfo.output_height),
+              h.cinfo.output_components);
+  if (!readJpegPixels(h, img.data.data(), static_cast<size_t>(img.width) * img.channels))
+    throw InputError(path.string(), "", std::string("bad JPEG: ") + h.sink.message);
+  return img;
 }
 
 void writeExr(const fs::path& path, const ImageF& img,

@@ -1,6 +1,7 @@
 #pragma once
 // Image file I/O for the dataset writers: PNG (8- and 16-bit, grey or RGB) through libpng and
-// single-part scanline EXR (32-bit float channels) through OpenEXR.
+// single-part scanline EXR (32-bit float channels) through OpenEXR; JPEG reading (textures)
+// through libjpeg.
 //
 // Every writer:
 //  - is atomic: it writes "<path>.tmp-<pid>" and renames it into place (core/atomic_file.h), so a
@@ -30,6 +31,11 @@ ImageU8 readPng8(const std::filesystem::path& path);
 /// Reads a 16-bit PNG (grey, grey+alpha, RGB or RGBA) into native uint16 values. An 8-bit file is
 /// an error.
 ImageU16 readPng16(const std::filesystem::path& path);
+
+/// Reads a baseline or progressive JPEG: grey files give 1 channel, colour (YCbCr or RGB) files 3
+/// channels of 8-bit values as stored (sRGB-encoded for ordinary photographs). CMYK/YCCK files, a
+/// missing, truncated or corrupt file are InputErrors naming the path; libjpeg never exits.
+ImageU8 readJpeg8(const std::filesystem::path& path);
 
 /// Writes a scanline EXR with one 32-bit FLOAT channel per entry of `channel_names` (their count
 /// must equal img.channels), ZIP compression (16 scanlines per block). EXR stores channels sorted

@@ -77,6 +77,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     s.emission = mat.emission;
     s.nyu40 = static_cast<uint8_t>(o.nyu40);
     s.instance = static_cast<uint16_t>(o.instance);
+    setUpShading(o, mesh, mat, s);
     bool instanced = mesh.isSphere() || uses[o.mesh] > 1;
     if (instanced) {
       Eigen::Matrix3d lin = o.T_world_object.block<3, 3>(0, 0);
@@ -106,6 +107,128 @@ EmbreeScene::~EmbreeScene() {
   for (RTCScene s : mesh_scenes_)
     if (s) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::setUpShading(const Object& o, const Mesh& mesh, const Material& mat,
+                               ObjectShading& s) {
+  const Eigen::Matrix3d L = o.T_world_object.block<3, 3>(0, 0);
+  s.linear = L.cast<float>();
+  s.vertex_normal_to_world = L.inverse().transpose().cast<float>();
+  s.translation = o.T_world_object.block<3, 1>(0, 3).cast<float>();
+  s.uv_scale = mat.uv_scale;
+  s.roughness = mat.roughness;
+  const std::string field = "materials['" + mat.id + "']";
+  auto texture = [&](const TextureRef& ref, TextureEncoding enc, const char* key) {
+    return ref.empty() ? nullptr : textures_.get(ref.path, enc, "", field + key);
+  };
+  s.albedo_map = texture(mat.albedo_texture, TextureEncoding::Srgb, ".albedo_texture");
+  s.roughness_map = texture(mat.roughness_texture, TextureEncoding::Linear, ".roughness_texture");
+  s.normal_map = texture(mat.normal_texture, TextureEncoding::Linear, ".normal_texture");
+  const bool textured = mat.isTextured();
+  if (mesh.isSphere()) {
+    if (textured) s.sphere_radius = mesh.sphere_radius;
+    return;
+  }
+  if (mesh.normals.empty() && !(textured && !mesh.uvs.empty())) return;
+  if (attributes_.size() <= static_cast<size_t>(o.mesh)) attributes_.resize(o.mesh + 1);
+  auto& a = attributes_[o.mesh];
+  if (!a) {
+    a = std::make_unique<MeshAttributes>();
+    a->positions = mesh.positions;
+    a->triangles = mesh.triangles;
+    a->normals = mesh.normals;
+    a->uvs = mesh.uvs;
+  }
+  s.attributes = a.get();
+}
+
+void EmbreeScene::surface(int object, unsigned prim, float u, float v, const Vec3f& ng,
+                          const Vec3f& p, const Vec3f& d, float footprint, SurfacePoint& sp,
+                          bool normal_map) const {
+  const ObjectShading& s = objects_[object];
+  sp.ng = ng;
+  sp.ns = ng;
+  sp.albedo = s.albedo;
+  sp.bsdf = s.bsdf;
+  if (s.plain()) return;
+  Vec2f uv = Vec2f::Zero();
+  float uv_per_metre = 0.f;  // sqrt(texture-space area / world area) of the surface
+  Vec3f dpdu = Vec3f::Zero(), dpdv = Vec3f::Zero();
+  if (s.sphere_radius > 0.f) {
+    // object-space unit normal = direction from the centre; u = longitude, v = up the sphere
+    const Vec3f n = (s.linear.transpose() * ng).normalized();
+    const float phi = std::atan2(n.y(), n.x()), theta = std::acos(std::clamp(n.z(), -1.f, 1.f));
+    const float r = s.sphere_radius, two_pi = 2.f * static_cast<float>(M_PI);
+    uv = Vec2f(phi / two_pi + 0.5f, 1.f - theta / static_cast<float>(M_PI));
+    const float scale = std::cbrt(std::fabs(s.linear.determinant()));
+    uv_per_metre = 1.f / (std::sqrt(4.f * static_cast<float>(M_PI)) * r * scale);
+    dpdu = s.linear * Vec3f(-n.y(), n.x(), 0.f) * (two_pi * r);
+    dpdv = s.linear * Vec3f(n.z() * std::cos(phi), n.z() * std::sin(phi), -std::sin(theta)) *
+           (-static_cast<float>(M_PI) * r);
+  } else {
+    const MeshAttributes& a = *s.attributes;
+    const Tri& t = a.triangles[prim];
+    const float w = 1.f - u - v;
+    if (!a.normals.empty()) {
+      Vec3f n = s.vertex_normal_to_world *
+                (w * a.normals[t[0]] + u * a.normals[t[1]] + v * a.normals[t[2]]);
+      if (n.squaredNorm() > 1e-12f) sp.ns = n.normalized();
+    }
+    if (!a.uvs.empty()) {
+      const Vec2f uv0 = a.uvs[t[0]], duv1 = a.uvs[t[1]] - uv0, duv2 = a.uvs[t[2]] - uv0;
+      uv = uv0 + u * duv1 + v * duv2;
+      const Vec3f e1 = s.linear * (a.positions[t[1]] - a.positions[t[0]]);
+      const Vec3f e2 = s.linear * (a.positions[t[2]] - a.positions[t[0]]);
+      const float det = duv1.x() * duv2.y() - duv1.y() * duv2.x();
+      const float area2 = e1.cross(e2).norm();
+      if (area2 > 0.f) uv_per_metre = std::sqrt(std::fabs(det) / area2);
+      if (std::fabs(det) > 1e-20f) {
+        dpdu = (e1 * duv2.y() - e2 * duv1.y()) / det;
+        dpdv = (e2 * duv1.x() - e1 * duv2.x()) / det;
+      }
+    }
+  }
+  if (sp.ns.dot(ng) < 0.f) sp.ns = -sp.ns;  // vertex normals only bend the surface, never flip it
+  // texture lookups: tiling scales texture space, so both the coordinates and the footprint
+  uv = uv.cwiseProduct(s.uv_scale);
+  const float tiling = std::sqrt(std::fabs(s.uv_scale.x() * s.uv_scale.y()));
+  const float cos_view = std::max(std::fabs(d.dot(ng)), 0.05f);  // grazing: cap the stretch
+  const float fp = footprint / cos_view * uv_per_metre * tiling;
+  if (s.albedo_map) {
+    const Vec3f c = s.albedo_map->rgb(uv, fp).cwiseMax(0.f).cwiseMin(1.f);
+    sp.albedo = s.albedo.cwiseProduct(c);
+    switch (sp.bsdf.type) {
+      case BsdfType::Conductor:
+        sp.bsdf.specular_tint = sp.bsdf.specular_tint.cwiseProduct(c);
+        break;
+      case BsdfType::Lambertian:
+      case BsdfType::Plastic:
+      case BsdfType::Translucent:
+        sp.bsdf.albedo = sp.bsdf.albedo.cwiseProduct(c);
+        break;
+      default:
+        break;
+    }
+  }
+  if (s.roughness_map) {
+    const int c = s.roughness_map->channels() >= 3 ? 1 : 0;  // glTF: roughness in G
+    const float r = std::clamp(s.roughness * s.roughness_map->channel(uv, fp, c), 0.f, 1.f);
+    sp.bsdf.alpha_x = sp.bsdf.alpha_y = roughnessToAlpha(r);
+  }
+  if (normal_map && s.normal_map && dpdu.squaredNorm() > 0.f && dpdv.squaredNorm() > 0.f) {
+    const Vec3f m = s.normal_map->rgb(uv, fp) * 2.f - Vec3f::Ones();
+    const Vec3f& n = sp.ns;
+    const Vec3f T = (dpdu - n * n.dot(dpdu)).normalized();
+    const Vec3f B = (dpdv - n * n.dot(dpdv) - T * T.dot(dpdv)).normalized();
+    Vec3f mapped = T * m.x() + B * m.y() + n * std::max(m.z(), 0.f);
+    // a mapped normal may not tip below the surface: keep it at least ~3 degrees above
+    if (mapped.allFinite() && mapped.squaredNorm() > 1e-12f) {
+      mapped.normalize();
+      const float c = mapped.dot(ng);
+      if (c < 0.05f) mapped = (mapped + (0.05f - c) * ng).normalized();
+      sp.ns = mapped;
+    }
+  }
 }
 
 void EmbreeScene::addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object) {

@@ -13,9 +13,19 @@
 
 #include "render/bsdf.h"
 #include "render/lights.h"
+#include "render/texture.h"
 #include "scene/scene.h"
 
 namespace inet {
+
+/// Object-space vertex data of one mesh that shading interpolates (kept only for meshes with
+/// vertex normals or texture coordinates on a textured object).
+struct MeshAttributes {
+  std::vector<Vec3f> positions;
+  std::vector<Tri> triangles;
+  std::vector<Vec3f> normals;  ///< empty: flat
+  std::vector<Vec2f> uvs;      ///< empty: none
+};
 
 /// What shading and the ground-truth passes need to know about the object a ray hit.
 struct ObjectShading {
@@ -24,8 +34,28 @@ struct ObjectShading {
   Vec3f emission;
   uint8_t nyu40 = 0;
   uint16_t instance = 0;
-  Eigen::Matrix3f normal_to_world = Eigen::Matrix3f::Identity();  ///< inverse transpose
+  Eigen::Matrix3f normal_to_world = Eigen::Matrix3f::Identity();  ///< for Embree's Ng
   int first_light = -1;  ///< index of this object's first emissive triangle, -1 if none
+  // Smooth shading and textures (all null/identity for a flat, untextured object):
+  const MeshAttributes* attributes = nullptr;
+  Eigen::Matrix3f linear = Eigen::Matrix3f::Identity();  ///< object-to-world linear part
+  Eigen::Matrix3f vertex_normal_to_world = Eigen::Matrix3f::Identity();  ///< its inv. transpose
+  Eigen::Vector3f translation = Eigen::Vector3f::Zero();                 ///< object-to-world
+  float sphere_radius = 0.f;  ///< > 0: analytic sphere (texture coordinates from its angles)
+  const Texture* albedo_map = nullptr;
+  const Texture* roughness_map = nullptr;
+  const Texture* normal_map = nullptr;
+  Vec2f uv_scale{1.f, 1.f};
+  float roughness = 0.f;  ///< the material's, which a roughness map multiplies
+  bool plain() const { return attributes == nullptr && sphere_radius == 0.f; }
+};
+
+/// A shading point: what the path tracer and the albedo/normal passes read at a hit.
+struct SurfacePoint {
+  Vec3f ng;      ///< unit geometric normal, world space, on the side the winding makes "out"
+  Vec3f ns;      ///< unit shading normal (vertex normals, normal map), on ng's side
+  Vec3f albedo;  ///< diffuse reflectance after textures (the albedo pass)
+  BsdfParams bsdf;
 };
 
 /// The BSDF of a scene material (roughness -> GGX alpha, metal preset -> complex IOR).
@@ -53,12 +83,23 @@ class EmbreeScene {
     return (objects_[object].normal_to_world * ng_object).normalized();
   }
 
+  /// Shading at a hit of `object` (triangle `prim`, barycentrics u, v; unit world geometric
+  /// normal `ng`) at world point `p`, seen along unit direction `d`. `footprint` is the width in
+  /// metres of the pixel's footprint perpendicular to the ray (ray cone, Akenine-Moller et al.
+  /// 2019), which picks the texture mip level; 0 reads the finest level. `normal_map` = false
+  /// leaves a material's normal map out (the ground-truth normal pass).
+  void surface(int object, unsigned prim, float u, float v, const Vec3f& ng, const Vec3f& p,
+               const Vec3f& d, float footprint, SurfacePoint& sp, bool normal_map = true) const;
+  /// Memory held by textures.
+  size_t textureBytes() const { return textures_.bytes(); }
+
   /// Every light that is on (emissive triangles first), for next-event estimation.
   const SceneLights& lights() const { return *lights_; }
   double buildMs() const { return build_ms_; }
 
  private:
   void addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object);
+  void setUpShading(const Object& o, const Mesh& mesh, const Material& mat, ObjectShading& s);
   RTCScene meshScene(int mesh_index, const Scene& scene);
   void buildLights(const Scene& scene);
 
@@ -67,6 +108,8 @@ class EmbreeScene {
   std::vector<RTCScene> mesh_scenes_;  ///< per mesh, for instanced meshes (nullptr otherwise)
   std::vector<int> geom_to_object_;
   std::vector<ObjectShading> objects_;
+  std::vector<std::unique_ptr<MeshAttributes>> attributes_;  ///< per mesh, or null
+  TextureCache textures_;
   std::unique_ptr<SceneLights> lights_;
   double build_ms_ = 0;
 };

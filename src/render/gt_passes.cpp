@@ -44,28 +44,48 @@ struct PassWriter {
     if (instance) instance[i] = 0;
   }
 
-  /// t: ray parameter (= z-depth, the camera-frame direction has z = 1); d_len: |d_camera|.
-  /// t: ray parameter; z_per_t: camera-frame z per unit t (1 for pinhole rays, whose direction
-  /// has z = 1, so the z-depth is exactly t); d_len: |d_camera|.
-  /// R_cw: world-to-camera rotation of the pose this pixel was traced from.
-  void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& d_world,
-           int object, const Vec3f& ng, const Eigen::Matrix3f& R_cw) const {
+  /// One hit. t: ray parameter; z_per_t: camera-frame z per unit t (1 for pinhole rays, whose
+  /// direction has z = 1, so the z-depth is exactly t); d_len: |d_camera|; o, d_world: the
+  /// world ray; prim, u, v, ng_object: Embree's hit; R_cw: world-to-camera rotation of the pose
+  /// this pixel was traced from; spread: the angle of one pixel (texture footprint).
+  void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& o,
+           const Eigen::Vector3f& d_world, int object, unsigned prim, float u, float v,
+           const Vec3f& ng_object, const Eigen::Matrix3f& R_cw, float spread) const {
     const ObjectShading& s = scene.object(object);
     if (depth_z) depth_z[i] = z_per_t == 1.f ? t : std::max(0.f, t * z_per_t);
     if (depth_ray) depth_ray[i] = t * d_len;
+    Vec3f a = s.albedo;
+    if (!normal && !albedo) return writeIds(i, s);
+    // the geometric normal decides which side faces the camera; a smooth normal near a
+    // silhouette may point away while the surface itself faces the camera
+    Vec3f ng = scene.worldNormal(object, ng_object);
+    const float flip = ng.dot(d_world) > 0 ? -1.f : 1.f;
+    Vec3f n = ng;
+    if (!s.plain()) {
+      // smooth normals and textured albedo; the normal pass leaves normal maps out (they fake
+      // detail the depth pass does not have)
+      SurfacePoint sp;
+      const float dist = t * d_len;
+      scene.surface(object, prim, u, v, ng, o + t * d_world, d_world / d_len, spread * dist, sp,
+                    /*normal_map=*/false);
+      n = sp.ns;
+      a = sp.albedo;
+    }
     if (normal) {
-      Vec3f n = s.normal_to_world * ng;
-      if (n.dot(d_world) > 0) n = -n;  // face the camera
-      n = (R_cw * n).normalized();
+      n = (R_cw * (flip * n)).normalized();
       normal[3 * i] = n.x();
       normal[3 * i + 1] = n.y();
       normal[3 * i + 2] = n.z();
     }
     if (albedo) {
-      albedo[3 * i] = s.albedo.x();
-      albedo[3 * i + 1] = s.albedo.y();
-      albedo[3 * i + 2] = s.albedo.z();
+      albedo[3 * i] = a.x();
+      albedo[3 * i + 1] = a.y();
+      albedo[3 * i + 2] = a.z();
     }
+    writeIds(i, s);
+  }
+
+  void writeIds(size_t i, const ObjectShading& s) const {
     if (label) label[i] = s.nyu40;
     if (instance) instance[i] = s.instance;
   }
@@ -115,6 +135,7 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
       row_t.push_back(p.t.cast<float>());
     }
   }
+  const auto spread = static_cast<float>(1.0 / std::sqrt(K.fx * K.fy));  // radians per pixel
   const float ax = static_cast<float>(1.0 / K.fx), bx = static_cast<float>((0.5 - K.cx) / K.fx);
   const float ay = static_cast<float>(1.0 / K.fy), by = static_cast<float>((0.5 - K.cy) / K.fy);
 
@@ -175,9 +196,11 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
               }
               int object = scene.objectOf(rh.hit.geomID[k], rh.hit.instID[0][k]);
               writer.hit(i, rh.ray.tfar[k], z_per_t[k], d_len[k],
+                         Eigen::Vector3f(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]),
                          Eigen::Vector3f(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]), object,
+                         rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k],
                          Vec3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),
-                         moving ? row_Rt[y] : R_camera_world);
+                         moving ? row_Rt[y] : R_camera_world, spread);
             }
           }
         }

@@ -4,8 +4,10 @@
 //   depth    z-depth (metres along the optical axis) = the ray parameter, since the camera-frame
 //            direction has z = 1
 //   ray_depth Euclidean distance from the camera centre (the InteriorNet paper's depth)
-//   normal   unit geometric normal in the camera frame, flipped to face the camera
-//   label    NYU40 class; instance: instance id; albedo: linear diffuse reflectance
+//   normal   unit shading normal in the camera frame (the mesh's interpolated vertex normals, else
+//            the geometric normal; normal maps are left out), flipped to face the camera
+//   label    NYU40 class; instance: instance id; albedo: linear diffuse reflectance, textured
+//            (mip level from the pixel's footprint, as the path tracer reads it)
 #include "core/pose.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"

@@ -50,6 +50,7 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
     } else {
       float half = 0.5f * l.angular_diameter_deg * kPi / 180.f;
       a.cos_max = std::cos(half);
+      a.one_minus_cos_max = static_cast<float>(2.0 * std::pow(std::sin(0.5 * double(half)), 2));
       // a disk of uniform radiance L gives irradiance E = L * pi * sin^2(half) at normal incidence
       a.radiance_scale = 1.f / (kPi * std::sin(half) * std::sin(half));
       p *= M_PI * scene_radius * scene_radius;
@@ -119,7 +120,7 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   }
   if (a.type == LightType::Sun) {
     // uniform direction inside the cone of the sun's disk, around -direction
-    float cos_t = 1.f - u.x() * (1.f - a.cos_max);
+    float cos_t = 1.f - u.x() * a.one_minus_cos_max;
     float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
     float phi = 2.f * kPi * u.y();
     const Vec3f axis = -a.direction;
@@ -128,7 +129,7 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
         (f.s * (sin_t * std::cos(phi)) + f.t * (sin_t * std::sin(phi)) + axis * cos_t).normalized();
     out.dist = std::numeric_limits<float>::infinity();
     out.radiance = a.rgb * a.radiance_scale;
-    out.pdf = 1.f / (2.f * kPi * (1.f - a.cos_max));
+    out.pdf = 1.f / (2.f * kPi * a.one_minus_cos_max);
     out.delta = false;
     return true;
   }
@@ -166,7 +167,7 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
     }
     if (-a.direction.dot(d) < a.cos_max) continue;  // outside this sun's disk
     L += a.rgb * a.radiance_scale;
-    pdf += pmf_[triangles_.size() + k] / (2.f * kPi * (1.f - a.cos_max));
+    pdf += pmf_[triangles_.size() + k] / (2.f * kPi * a.one_minus_cos_max);
   }
   return L;
 }

@@ -54,6 +54,9 @@ class SceneLights {
     Vec3f position, direction, rgb;             // rgb: intensity (W/sr) or irradiance (W/m^2)
     float cos_outer = -1.f, cos_inner = -1.f;   // spot
     float cos_max = 1.f, radiance_scale = 0.f;  // sun: cone of the disk, L = rgb * scale
+    // sun: 1 - cos_max computed without cancellation (in float, 1 - cos(0.27 deg) keeps only
+    // two significant digits: a 0.3% error in the disk's solid angle and so in its light)
+    float one_minus_cos_max = 0.f;
     float max_distance = 0.f;
   };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,

@@ -1,8 +1,8 @@
-// Unidirectional path tracer: Lambertian surfaces, one-sided emissive triangles (area lights),
-// point, spot and sun lights (lights.h); next-event estimation combined with BSDF sampling by
-// multiple importance
-// sampling (power heuristic, Veach 1997), Russian roulette after three bounces. One ray per call
-// (rtcIntersect1 / rtcOccluded1); issue 3 adds the other BSDF families and packet tracing.
+// Unidirectional path tracer over the BSDF families of bsdf.h, with smooth shading normals and
+// textures (EmbreeScene::surface); one-sided emissive triangles (area lights), point, spot, sun
+// and sky lights (lights.h); next-event estimation combined with BSDF sampling by multiple
+// importance sampling (power heuristic, Veach 1997), Russian roulette from the third bounce.
+// One ray per call (rtcIntersect1 / rtcOccluded1).
 //
 // Samples: a padded, Owen-scrambled Sobol sampler per (seed, frame, pixel, sample) (sampler.h),
 // so the image does not depend on the number of threads or the order of tiles.
@@ -55,6 +55,8 @@ class PathTracer final : public Integrator {
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
+    // angle one pixel subtends (fx, fy are pixels per radian for every lens model)
+    const auto pixel_spread = static_cast<float>(1.0 / std::sqrt(K.fx * K.fy));
     auto tile = [&](const tbb::blocked_range2d<int>& r) {
       uint64_t tile_rays = 0;
       for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
@@ -80,7 +82,7 @@ class PathTracer final : public Integrator {
             Vec3f o = Rs * cr.origin.cast<float>() + origin_s;
             Vec3f d = Rs * cr.dir.cast<float>();
             Vec3f le;
-            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, smp, le, tile_rays);
+            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, pixel_spread, smp, le, tile_rays);
             sum += v;
             sum_le += le;
             Vec3f reflected = v - le;  // the variance guide describes what gets filtered
@@ -150,15 +152,17 @@ class PathTracer final : public Integrator {
   /// Radiance along a camera ray; `seen_emission` receives the part emitted by the first surface
   /// hit (directly visible lights), which the denoiser must leave alone.
   /// `rays` counts the rays traced.
-  Vec3f radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp, Vec3f& seen_emission,
-                 uint64_t& rays) const;
+  /// `pixel_spread` is the angle of one pixel (radians), for texture footprints.
+  Vec3f radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
+                 Vec3f& seen_emission, uint64_t& rays) const;
 };
 
-Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
+Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
                            Vec3f& seen_emission, uint64_t& rays) const {
   seen_emission = Vec3f::Zero();
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
+  float path_length = 0.f;    // metres travelled so far (for the texture footprint)
   float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray`
   bool prev_delta = false;    // that sample came from a specular (delta) lobe: no MIS
   for (int bounce = 0;; ++bounce) {
@@ -180,6 +184,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
     Vec3f ng = scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     float t = rh.ray.tfar;
     Vec3f p = ray.o + t * ray.d;
+    path_length += t;
     float cos_emit = -ng.dot(ray.d);
     if (s.first_light >= 0 && cos_emit > 0.f) {
       float w = 1.f;
@@ -191,18 +196,31 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
       if (from_camera) seen_emission = s.emission;
     }
     if (bounce >= ctx.options.max_bounces) break;
-    const BsdfParams& bsdf = s.bsdf;
+    // Texture footprint: a ray cone of the camera's pixel spread along the whole path so far
+    // (pbrt-v4 likewise reuses the camera's footprint for indirect rays).
+    SurfacePoint sp;
+    scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, p, ray.d,
+                  pixel_spread * path_length, sp);
+    const BsdfParams& bsdf = sp.bsdf;
     const bool lambert = bsdf.type == BsdfType::Lambertian;
     // Lambertian (the common case) keeps a fast path: two-sided, normal turned to face the ray.
-    // Other BSDFs work in the frame of the geometric normal and handle both sides themselves
-    // (a dielectric needs the outward normal to know inside from outside).
+    // Other BSDFs work in the frame of the shading normal (which lies on the geometric normal's
+    // side) and handle both sides themselves (a dielectric needs the outward normal to know
+    // inside from outside). Shading normals must not leak light: a direction counts only when it
+    // is on the same side of the geometric surface as the shading frame says (reflection stays
+    // in front, transmission goes through).
     const Vec3f n_face = cos_emit > 0.f ? ng : Vec3f(-ng);
+    const Vec3f ns_face = cos_emit > 0.f ? sp.ns : Vec3f(-sp.ns);
     Frame3 frame;
     Vec3f wo;
     if (!lambert) {
-      frame = Frame3::fromNormal(ng);
+      frame = Frame3::fromNormal(sp.ns);
       wo = frame.toLocal(-ray.d);
     }
+    // does world direction w leave on the side the shading frame says (local z sign)?
+    auto consistent = [&](const Vec3f& w, float z_local) {
+      return ((ng.dot(w) > 0.f) == (cos_emit > 0.f)) == ((z_local > 0.f) == (wo.z() > 0.f));
+    };
     const float eps = offsetScale(p);
     auto offset = [&](const Vec3f& w) { return Vec3f(p + ng * (ng.dot(w) > 0.f ? eps : -eps)); };
     const Eigen::Vector2f u_select_rr = smp.get2D();  // x: which light, y: Russian roulette
@@ -214,16 +232,21 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
     const Vec3f p_face = p + n_face * eps;
     if (!isDelta(bsdf) &&
         scene.lights().sample(lambert ? p_face : p, u_select_rr.x(), u_light, ls)) {
-      Vec3f f_cos;
-      float bsdf_pdf;
+      Vec3f f_cos = Vec3f::Zero();
+      float bsdf_pdf = 0.f;
       if (lambert) {
-        float cos_s = std::max(0.f, n_face.dot(ls.wi));
-        f_cos = s.albedo * (cos_s / kPi);
-        bsdf_pdf = cos_s / kPi;
+        if (n_face.dot(ls.wi) > 0.f) {
+          float cos_s = std::max(0.f, ns_face.dot(ls.wi));
+          f_cos = sp.albedo * (cos_s / kPi);
+          bsdf_pdf = cos_s / kPi;
+        }
       } else {
-        BsdfEval e = evalBsdfPdf(bsdf, wo, frame.toLocal(ls.wi));
-        f_cos = e.value;
-        bsdf_pdf = e.pdf;
+        const Vec3f wi_local = frame.toLocal(ls.wi);
+        if (consistent(ls.wi, wi_local.z())) {
+          BsdfEval e = evalBsdfPdf(bsdf, wo, wi_local);
+          f_cos = e.value;
+          bsdf_pdf = e.pdf;
+        }
       }
       if (f_cos.maxCoeff() > 0.f) {
         Vec3f o = lambert ? p_face : offset(ls.wi);
@@ -239,14 +262,16 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, PixelSampler& smp,
     // continue the path by sampling the BSDF
     Vec3f wi;
     if (lambert) {
-      wi = cosineHemisphere(n_face, u_bsdf.x(), u_bsdf.y());
-      prev_bsdf_pdf = std::max(n_face.dot(wi), 0.f) / kPi;
+      wi = cosineHemisphere(ns_face, u_bsdf.x(), u_bsdf.y());
+      if (n_face.dot(wi) <= 0.f) break;  // below the geometric surface (shading normal)
+      prev_bsdf_pdf = std::max(ns_face.dot(wi), 0.f) / kPi;
       prev_delta = false;
-      throughput = throughput.cwiseProduct(s.albedo);
+      throughput = throughput.cwiseProduct(sp.albedo);
     } else {
       std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
       if (!bs) break;
       wi = frame.toWorld(bs->wi).normalized();
+      if (!consistent(wi, bs->wi.z())) break;
       prev_bsdf_pdf = bs->pdf;
       prev_delta = bs->delta;
       throughput = throughput.cwiseProduct(bs->weight);

@@ -23,8 +23,9 @@ namespace inet {
 namespace {
 
 // Triangulate so every polygon becomes triangles; join identical vertices so shared corners are
-// shared indices. No normal generation (the renderer uses flat geometric normals) and nothing
-// that pre-transforms, merges or reorders meshes across nodes (object identity must survive).
+// shared indices. No normal generation (a file without normals is shaded flat, as Cycles does)
+// and nothing that pre-transforms, merges or reorders meshes across nodes (object identity must
+// survive).
 constexpr unsigned kImportFlags =
     aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
 
@@ -86,39 +87,78 @@ void walkNodes(const aiNode* node, const Mat4& T_parent,
   for (unsigned c = 0; c < node->mNumChildren; ++c) walkNodes(node->mChildren[c], T, visit);
 }
 
-/// Appends the triangles of `in` with positions mapped by `M` (winding flipped when M mirrors).
-/// Only vertices used by a triangle are copied. Returns the number of non-triangle faces dropped.
-size_t appendTriangles(const aiMesh* in, const Mat4& M, Mesh& out) {
-  const bool flip = M.block<3, 3>(0, 0).determinant() < 0;
-  std::vector<int64_t> remap(in->mNumVertices, -1);
-  size_t dropped = 0;
-  for (unsigned f = 0; f < in->mNumFaces; ++f) {
-    const aiFace& face = in->mFaces[f];
-    if (face.mNumIndices != 3) {
-      ++dropped;
-      continue;
-    }
-    Tri tri;
-    for (int k = 0; k < 3; ++k) {
-      unsigned v = face.mIndices[k];
-      if (remap[v] < 0) {
-        remap[v] = static_cast<int64_t>(out.positions.size());
-        const aiVector3D& p = in->mVertices[v];
-        Vec3 w = (M * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
-        out.positions.push_back(w.cast<float>());
+/// Collects triangles of one or more aiMeshes into a Mesh. Normals are kept only when every part
+/// has valid ones (otherwise the merged mesh is shaded flat); texture coordinates when any part
+/// has them (parts without read (0, 0)).
+struct MeshBuilder {
+  Mesh mesh;
+  bool all_normals = true;
+  bool any_uvs = false;
+
+  /// Appends the triangles of `in` with positions mapped by `M` (winding flipped when M
+  /// mirrors), normals by its inverse transpose. Only vertices used by a triangle are copied.
+  /// Returns the number of non-triangle faces dropped.
+  size_t append(const aiMesh* in, const Mat4& M) {
+    const bool flip = M.block<3, 3>(0, 0).determinant() < 0;
+    const Mat3 N = M.block<3, 3>(0, 0).inverse().transpose();
+    const bool has_normals = in->mNormals != nullptr, has_uvs = in->HasTextureCoords(0);
+    all_normals = all_normals && has_normals;
+    any_uvs = any_uvs || has_uvs;
+    std::vector<int64_t> remap(in->mNumVertices, -1);
+    size_t dropped = 0;
+    for (unsigned f = 0; f < in->mNumFaces; ++f) {
+      const aiFace& face = in->mFaces[f];
+      if (face.mNumIndices != 3) {
+        ++dropped;
+        continue;
       }
-      tri[k] = static_cast<uint32_t>(remap[v]);
+      Tri tri;
+      for (int k = 0; k < 3; ++k) {
+        unsigned v = face.mIndices[k];
+        if (remap[v] < 0) {
+          remap[v] = static_cast<int64_t>(mesh.positions.size());
+          const aiVector3D& p = in->mVertices[v];
+          Vec3 w = (M * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
+          mesh.positions.push_back(w.cast<float>());
+          Vec3 n = Vec3::UnitZ();
+          if (has_normals) {
+            const aiVector3D& a = in->mNormals[v];
+            n = N * Vec3(a.x, a.y, a.z);
+            if (!(n.allFinite() && n.norm() > 1e-12)) all_normals = false;  // broken: go flat
+          }
+          mesh.normals.push_back(n.allFinite() && n.norm() > 1e-12
+                                     ? Vec3f(n.normalized().cast<float>())
+                                     : Vec3f::UnitZ());
+          const aiVector3D uv = has_uvs ? in->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+          mesh.uvs.emplace_back(uv.x, uv.y);
+        }
+        tri[k] = static_cast<uint32_t>(remap[v]);
+      }
+      if (flip) std::swap(tri[1], tri[2]);
+      mesh.triangles.push_back(tri);
     }
-    if (flip) std::swap(tri[1], tri[2]);
-    out.triangles.push_back(tri);
+    return dropped;
   }
-  return dropped;
-}
+
+  Mesh finish() {
+    if (!all_normals) mesh.normals.clear();
+    if (!any_uvs || !std::all_of(mesh.uvs.begin(), mesh.uvs.end(),
+                                 [](const Vec2f& uv) { return uv.allFinite(); }))
+      mesh.uvs.clear();
+    return std::move(mesh);
+  }
+};
 
 size_t countTriangles(const aiMesh* m) {
   size_t n = 0;
   for (unsigned f = 0; f < m->mNumFaces; ++f) n += (m->mFaces[f].mNumIndices == 3);
   return n;
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext;
 }
 
 std::string uniqueId(std::string base, std::set<std::string>& used) {
@@ -136,10 +176,57 @@ Vec3f readColor(const aiMaterial* m, const char* key, unsigned type, unsigned in
   return Vec3f(c.r, c.g, c.b);
 }
 
+/// The image a material's texture slot names, resolved against the model's folder, or an empty
+/// ref. A folder (SceneNet's `map_Kd ../texture_library/wall` picks one image of a folder at
+/// random) resolves to one of its images, chosen by a hash of the material name so that the
+/// choice is the same on every run. Embedded textures ("*0") and missing files are counted in
+/// the report and ignored.
+TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string& material,
+                     const fs::path& model_dir, ImportReport& report) {
+  aiString file;
+  if (in->GetTextureCount(type) == 0 || in->GetTexture(type, 0, &file) != AI_SUCCESS) return {};
+  std::string written = file.C_Str();
+  if (written.empty()) return {};
+  if (written[0] == '*') {
+    ++report.skipped_textures;
+    return {};
+  }
+  std::replace(written.begin(), written.end(), '\\', '/');
+  fs::path path = fs::path(written).is_absolute() ? fs::path(written) : model_dir / written;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    std::vector<fs::path> images;
+    for (const auto& e : fs::directory_iterator(path, ec)) {
+      const std::string ext = lowerExtension(e.path().string());
+      if (e.is_regular_file(ec) && (ext == ".jpg" || ext == ".jpeg" || ext == ".png"))
+        images.push_back(e.path());
+    }
+    std::sort(images.begin(), images.end());
+    if (images.empty()) {
+      ++report.skipped_textures;
+      return {};
+    }
+    // FNV-1a of the material name: stable across runs and platforms (std::hash is not)
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : material) h = (h ^ c) * 1099511628211ull;
+    path = images[h % images.size()];
+  }
+  if (!fs::is_regular_file(path, ec)) {
+    ++report.skipped_textures;
+    return {};
+  }
+  TextureRef ref;
+  ref.path = ref.file = path.lexically_normal().string();
+  return ref;
+}
+
 /// Lambertian material from an Assimp material: diffuse colour (clamped to [0, 1]) and emissive
-/// colour (negative parts clamped to 0). Both are taken as linear RGB, as OBJ Kd/Ke and glTF are.
-Material convertMaterial(const aiMaterial* in, std::set<std::string>& used_ids,
-                         ImportReport& report) {
+/// colour (negative parts clamped to 0), both taken as linear RGB as OBJ Kd/Ke and glTF are; the
+/// diffuse and normal textures. With a diffuse texture an OBJ's Kd is ignored (the texture is the
+/// colour, as in Blender's importer); other formats' diffuse colour is glTF's base-colour factor,
+/// which multiplies the texture.
+Material convertMaterial(const aiMaterial* in, const fs::path& model_dir, bool is_obj,
+                         std::set<std::string>& used_ids, ImportReport& report) {
   Material mat;
   aiString name;
   in->Get(AI_MATKEY_NAME, name);
@@ -151,6 +238,10 @@ Material convertMaterial(const aiMaterial* in, std::set<std::string>& used_ids,
   if (albedo.minCoeff() < 0.f || albedo.maxCoeff() > 1.f) ++report.clamped_materials;
   mat.albedo = albedo.cwiseMax(0.f).cwiseMin(1.f);
   mat.emission = emission.cwiseMax(0.f);
+  mat.albedo_texture = textureOf(in, aiTextureType_DIFFUSE, name.C_Str(), model_dir, report);
+  mat.normal_texture = textureOf(in, aiTextureType_NORMALS, name.C_Str(), model_dir, report);
+  if (!mat.albedo_texture.empty() && is_obj) mat.albedo = Vec3f::Ones();
+  if (in->GetTextureCount(aiTextureType_HEIGHT) > 0) ++report.ignored_bump_maps;
   return mat;
 }
 
@@ -158,8 +249,9 @@ Material convertMaterial(const aiMaterial* in, std::set<std::string>& used_ids,
 int addSharedMesh(const aiScene* ai, unsigned index, const Mat4& C, Scene& scene,
                   std::set<std::string>& used_ids, ImportReport& report) {
   const aiMesh* in = ai->mMeshes[index];
-  Mesh mesh;
-  report.dropped_faces += appendTriangles(in, C, mesh);
+  MeshBuilder builder;
+  report.dropped_faces += builder.append(in, C);
+  Mesh mesh = builder.finish();
   if (mesh.triangles.empty()) return -1;
   mesh.id = uniqueId(in->mName.C_Str(), used_ids);
   mesh.source.kind = MeshSource::Kind::Inline;
@@ -204,7 +296,9 @@ struct SceneBuilder {
         default_id(default_id),
         C(fileToWorld(opt.scale, opt.up)),
         shared_mesh(ai->mNumMeshes, -2),
-        material_of(ai->mNumMaterials, -1) {}
+        material_of(ai->mNumMaterials, -1),
+        model_dir(fs::path(path).parent_path()),
+        is_obj(lowerExtension(path) == ".obj") {}
 
   void addNode(const aiNode* node, const Mat4& T_file) {
     const Mat4 T_world = fileTransformToWorld(T_file, opt.scale, opt.up);
@@ -224,8 +318,9 @@ struct SceneBuilder {
         obj.mesh = shared_mesh[mi];
         obj.T_world_object = T_world;
       } else {
-        Mesh baked;
-        report.dropped_faces += appendTriangles(in, C * T_file, baked);
+        MeshBuilder builder;
+        report.dropped_faces += builder.append(in, C * T_file);
+        Mesh baked = builder.finish();
         baked.id = uniqueId(obj.name, mesh_ids);
         scene.meshes.push_back(std::move(baked));
         obj.mesh = static_cast<int>(scene.meshes.size()) - 1;
@@ -243,7 +338,8 @@ struct SceneBuilder {
   int materialIndex(unsigned ai_index) {
     int& mat = material_of[ai_index];
     if (mat < 0) {
-      scene.materials.push_back(convertMaterial(ai->mMaterials[ai_index], material_ids, report));
+      scene.materials.push_back(
+          convertMaterial(ai->mMaterials[ai_index], model_dir, is_obj, material_ids, report));
       mat = static_cast<int>(scene.materials.size()) - 1;
     }
     return mat;
@@ -257,6 +353,8 @@ struct SceneBuilder {
   const Mat4 C;
   std::vector<int> shared_mesh;  ///< per aiMesh: -2 = not built yet, -1 = no triangles
   std::vector<int> material_of;  ///< per aiMaterial: index in scene.materials or -1
+  const fs::path model_dir;      ///< textures are named relative to the model file
+  const bool is_obj;
   std::set<std::string> mesh_ids, material_ids, unmatched_seen;
   std::map<std::string, int> instance_of;
   Scene scene;
@@ -280,6 +378,14 @@ std::string ImportReport::summary(const std::string& default_category) const {
   if (dropped_faces > 0)
     parts.push_back(
         fmt::format("{} non-triangle face(s) (lines or points) were skipped", dropped_faces));
+  if (skipped_textures > 0)
+    parts.push_back(fmt::format(
+        "{} texture(s) were embedded in the file, missing or an empty folder and were skipped",
+        skipped_textures));
+  if (ignored_bump_maps > 0)
+    parts.push_back(fmt::format(
+        "{} material(s) have a bump (height) map, which is not supported and was ignored",
+        ignored_bump_maps));
   if (clamped_materials > 0)
     parts.push_back(fmt::format(
         "{} material(s) had a diffuse colour outside [0, 1] and were clamped", clamped_materials));
@@ -316,7 +422,7 @@ Mesh loadMeshFile(const std::string& path, double scale, char up, const std::str
   auto importer = readFile(path, where_file, where_field);
   const aiScene* ai = importer->GetScene();
   const Mat4 C = fileToWorld(scale, up);
-  Mesh mesh;
+  MeshBuilder builder;
   std::vector<std::string> names;  // for the "no such part" message
   bool matched = false;
   walkNodes(ai->mRootNode, Mat4::Identity(), [&](const aiNode* node, const Mat4& T_file) {
@@ -328,7 +434,7 @@ Mesh loadMeshFile(const std::string& path, double scale, char up, const std::str
         continue;
       }
       matched = true;
-      appendTriangles(in, C * T_file, mesh);
+      builder.append(in, C * T_file);
     }
   });
   const std::string what = where_file == path ? std::string() : fmt::format("'{}': ", path);
@@ -340,6 +446,7 @@ Mesh loadMeshFile(const std::string& path, double scale, char up, const std::str
         where_file, where_field,
         fmt::format("{}no node or mesh named '{}' (available: {})", what, mesh_name, list));
   }
+  Mesh mesh = builder.finish();
   if (mesh.triangles.empty())
     throw InputError(where_file, where_field, what + "contains no triangles");
   mesh.id = mesh_name.empty() ? fs::path(path).stem().string() : mesh_name;

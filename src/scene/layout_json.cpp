@@ -127,6 +127,11 @@ class Reader {
                  single(j[2], at(field, 2)));
   }
 
+  Vec2f vec2f(const json& j, const std::string& field) const {
+    fixedArray(j, field, 2);
+    return Vec2f(single(j[0], at(field, 0)), single(j[1], at(field, 1)));
+  }
+
  private:
   std::string file_;
 };
@@ -209,8 +214,23 @@ Mesh parseFileMesh(const Reader& r, const json& j, const std::string& field,
   return mesh;
 }
 
+/// Optional per-vertex attribute array `key` (one entry per vertex), read by `item`.
+template <typename T, typename Item>
+std::vector<T> parseVertexAttribute(const Reader& r, const json& j, const std::string& field,
+                                    const char* key, size_t vertices, Item item) {
+  std::vector<T> out;
+  if (!j.contains(key)) return out;
+  const std::string f = dot(field, key);
+  const json& a = r.array(j[key], f);
+  if (a.size() != vertices)
+    r.fail(f, fmt::format("{} entries for {} vertices (need one per vertex)", a.size(), vertices));
+  out.reserve(a.size());
+  for (size_t i = 0; i < a.size(); ++i) out.push_back(item(a[i], at(f, i)));
+  return out;
+}
+
 Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
-  r.object(j, field, {"id", "vertices", "triangles"}, {});
+  r.object(j, field, {"id", "vertices", "triangles"}, {"normals", "uvs"});
   Mesh mesh;
   mesh.source.kind = MeshSource::Kind::Inline;
   const json& verts = r.array(j["vertices"], dot(field, "vertices"));
@@ -232,6 +252,16 @@ Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
     }
     mesh.triangles.push_back(t);
   }
+  const size_t nv = mesh.positions.size();
+  mesh.normals = parseVertexAttribute<Vec3f>(r, j, field, "normals", nv,
+                                             [&](const json& e, const std::string& f) {
+                                               Vec3f n = r.vec3f(e, f);
+                                               if (!(n.norm() > 1e-6f))
+                                                 r.fail(f, "a normal must not be zero");
+                                               return Vec3f(n.normalized());
+                                             });
+  mesh.uvs = parseVertexAttribute<Vec2f>(
+      r, j, field, "uvs", nv, [&](const json& e, const std::string& f) { return r.vec2f(e, f); });
   return mesh;
 }
 
@@ -248,36 +278,55 @@ Mesh parseMesh(const Reader& r, const json& j, const std::string& field, const f
   return mesh;
 }
 
-Material parseMaterial(const Reader& r, const json& j, const std::string& field) {
+/// An image file named by a material key, resolved against the layout's folder.
+TextureRef parseTexture(const Reader& r, const json& j, const std::string& field,
+                        const fs::path& base_dir) {
+  TextureRef t;
+  t.file = r.string(j, field);
+  t.path = (fs::path(t.file).is_absolute() ? fs::path(t.file) : base_dir / t.file).string();
+  std::error_code ec;
+  if (!fs::is_regular_file(t.path, ec))
+    r.fail(field, fmt::format("'{}': {}", t.path,
+                              fs::exists(t.path, ec) ? "is not a file" : "file not found"));
+  return t;
+}
+
+Material parseMaterial(const Reader& r, const json& j, const std::string& field,
+                       const fs::path& base_dir) {
   if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
   if (!j.contains("type")) r.fail(dot(field, "type"), "missing required key");
   const std::string type = r.string(j["type"], dot(field, "type"));
   Material m;
   // required and optional keys per family
   static const std::vector<std::tuple<std::string, MaterialType, Keys, Keys>> kTypes = {
-      {"lambertian", MaterialType::Lambertian, {"id", "type", "albedo"}, {"emission"}},
+      {"lambertian",
+       MaterialType::Lambertian,
+       {"id", "type", "albedo"},
+       {"emission", "albedo_texture"}},
       {"conductor",
        MaterialType::Conductor,
        {"id", "type", "metal"},
-       {"roughness", "albedo", "emission"}},
+       {"roughness", "albedo", "emission", "albedo_texture", "roughness_texture"}},
       {"plastic",
        MaterialType::Plastic,
        {"id", "type", "albedo"},
-       {"roughness", "ior", "emission"}},
+       {"roughness", "ior", "emission", "albedo_texture", "roughness_texture"}},
       {"dielectric",
        MaterialType::Dielectric,
        {"id", "type"},
-       {"ior", "roughness", "transmittance"}},
+       {"ior", "roughness", "transmittance", "roughness_texture"}},
       {"thin_dielectric", MaterialType::ThinDielectric, {"id", "type"}, {"ior", "transmittance"}},
       {"translucent",
        MaterialType::Translucent,
        {"id", "type", "albedo", "transmittance"},
-       {"emission"}},
+       {"emission", "albedo_texture"}},
   };
   bool known = false;
   for (const auto& [name, t, required, optional] : kTypes) {
     if (name != type) continue;
-    r.object(j, field, required, optional);
+    Keys keys = optional;  // every family may carry a normal map and a uv scale
+    keys.insert(keys.end(), {"normal_texture", "uv_scale"});
+    r.object(j, field, required, keys);
     m.type = t;
     known = true;
   }
@@ -302,6 +351,16 @@ Material parseMaterial(const Reader& r, const json& j, const std::string& field)
   if (j.contains("metal")) m.metal = r.string(j["metal"], dot(field, "metal"));
   if (j.contains("transmittance"))
     m.transmittance = r.vec3f(j["transmittance"], dot(field, "transmittance"));
+  const std::pair<const char*, TextureRef Material::*> textures[] = {
+      {"albedo_texture", &Material::albedo_texture},
+      {"roughness_texture", &Material::roughness_texture},
+      {"normal_texture", &Material::normal_texture}};
+  for (const auto& [key, member] : textures)
+    if (j.contains(key)) m.*member = parseTexture(r, j[key], dot(field, key), base_dir);
+  if (j.contains("uv_scale")) {
+    m.uv_scale = r.vec2f(j["uv_scale"], dot(field, "uv_scale"));
+    if (m.uv_scale.cwiseAbs().minCoeff() == 0.f) r.fail(dot(field, "uv_scale"), "must not be 0");
+  }
   return m;
 }
 
@@ -455,192 +514,6 @@ std::map<std::string, int> parseList(const Reader& r, const json& root, const ch
   return ids;
 }
 
-// ---- writing ----
-
-using ojson = nlohmann::ordered_json;
-
-/// A double as JSON: integral values as integers ("1" rather than "1.0"; reads back identical),
-/// others as nlohmann's shortest round-trip text. -0.0 keeps its sign.
-ojson jsonNumber(double v) {
-  const bool negative_zero = (v == 0.0 && std::signbit(v));
-  if (v == std::floor(v) && std::fabs(v) < 1e15 && !negative_zero) return static_cast<int64_t>(v);
-  return v;
-}
-
-/// A float as JSON: the shortest decimal that reads back (double, then cast to float) as the
-/// same float, e.g. 0.72f -> 0.72 instead of its widened 0.7200000286102295.
-ojson jsonNumber(float f) {
-  const std::string text = fmt::format("{}", f);
-  double d = std::strtod(text.c_str(), nullptr);
-  if (static_cast<float>(d) != f) d = static_cast<double>(f);  // guard against double rounding
-  return jsonNumber(d);
-}
-
-template <class V>
-ojson jsonArray(const V& v) {
-  ojson a = ojson::array();
-  for (int i = 0; i < v.size(); ++i) a.push_back(jsonNumber(v[i]));
-  return a;
-}
-
-ojson lightToJson(const Light& l) {
-  ojson j;
-  j["name"] = l.name;
-  j["type"] = lightTypeName(l.type);
-  const bool directional = l.type == LightType::Sun || l.type == LightType::Sky;
-  if (!directional) j["position"] = jsonArray(l.position);
-  if (l.type == LightType::Spot || l.type == LightType::Sun)
-    j["direction"] = jsonArray(l.direction);
-  j["intensity"] = jsonNumber(l.intensity);
-  j["color"] = jsonArray(l.color);
-  j["temperature_k"] = jsonNumber(l.temperature_k);
-  if (l.type == LightType::Spot) {
-    j["cone_deg"] = jsonNumber(l.cone_deg);
-    j["falloff_deg"] = jsonNumber(l.falloff_deg);
-  }
-  if (l.type == LightType::Sun) j["angular_diameter_deg"] = jsonNumber(l.angular_diameter_deg);
-  if (!directional) j["max_distance"] = jsonNumber(l.max_distance);
-  j["on"] = l.on;
-  return j;
-}
-
-ojson materialToJson(const Material& m) {
-  ojson j;
-  j["id"] = m.id;
-  j["type"] = materialTypeName(m.type);
-  const MaterialType t = m.type;
-  if (t != MaterialType::Dielectric && t != MaterialType::ThinDielectric)
-    j["albedo"] = jsonArray(m.albedo);
-  if (t == MaterialType::Conductor) j["metal"] = m.metal;
-  if (t == MaterialType::Conductor || t == MaterialType::Plastic || t == MaterialType::Dielectric)
-    j["roughness"] = jsonNumber(m.roughness);
-  if (t == MaterialType::Plastic || t == MaterialType::Dielectric ||
-      t == MaterialType::ThinDielectric)
-    j["ior"] = jsonNumber(m.ior);
-  if (t == MaterialType::Dielectric || t == MaterialType::ThinDielectric ||
-      t == MaterialType::Translucent)
-    j["transmittance"] = jsonArray(m.transmittance);
-  if (t != MaterialType::Dielectric && t != MaterialType::ThinDielectric)
-    j["emission"] = jsonArray(m.emission);
-  return j;
-}
-
-ojson meshToJson(const Mesh& m, const std::string& where, const std::string& field) {
-  ojson j;
-  j["id"] = m.id;
-  const MeshSource& s = m.source;
-  switch (s.kind) {
-    case MeshSource::Kind::Primitive: {
-      j["primitive"] = s.primitive;
-      if (!s.params.empty()) {
-        ojson params = ojson::object();
-        for (const auto& [key, value] : s.params) params[key] = jsonNumber(value);
-        j["params"] = params;
-      }
-      break;
-    }
-    case MeshSource::Kind::File:
-      j["file"] = s.file;
-      j["scale"] = jsonNumber(s.scale);
-      j["up"] = std::string(1, s.up);
-      if (!s.mesh_name.empty()) j["mesh_name"] = s.mesh_name;
-      break;
-    case MeshSource::Kind::Inline: {
-      if (m.isSphere())
-        throw InputError(where, field,
-                         "an analytic sphere must have a \"sphere\" primitive source");
-      ojson verts = ojson::array(), tris = ojson::array();
-      for (const auto& p : m.positions) verts.push_back(jsonArray(p));
-      for (const auto& t : m.triangles) tris.push_back({t[0], t[1], t[2]});
-      j["vertices"] = std::move(verts);
-      j["triangles"] = std::move(tris);
-      break;
-    }
-  }
-  return j;
-}
-
-ojson objectToJson(const Scene& scene, const Object& o) {
-  ojson j;
-  j["name"] = o.name;
-  j["mesh"] = scene.meshes[o.mesh].id;
-  j["material"] = scene.materials[o.material].id;
-  j["nyu40"] = o.nyu40;
-  j["category"] = std::string(nyu40Name(o.nyu40));
-  j["instance"] = o.instance;
-  ojson t = ojson::array();
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 4; ++col) t.push_back(jsonNumber(o.T_world_object(row, col)));
-  j["transform"] = std::move(t);
-  return j;
-}
-
-/// Ids must be present and unique for objects to refer to them and for the file to load again.
-template <class T>
-void checkIds(const std::vector<T>& items, const std::string& where, const char* list) {
-  std::map<std::string, size_t> seen;
-  for (size_t i = 0; i < items.size(); ++i) {
-    if (items[i].id.empty()) throw InputError(where, at(list, i) + ".id", "empty id");
-    auto [it, inserted] = seen.emplace(items[i].id, i);
-    if (!inserted)
-      throw InputError(
-          where, at(list, i) + ".id",
-          fmt::format("duplicate id '{}' (already used by {})", items[i].id, at(list, it->second)));
-  }
-}
-
-/// Everything the reader requires that Scene::validate does not check, so that what we write
-/// always loads again.
-void checkWritable(const Scene& scene, const std::string& where) {
-  scene.validate(where);
-  checkIds(scene.meshes, where, "meshes");
-  checkIds(scene.materials, where, "materials");
-  if (scene.name.empty()) throw InputError(where, "name", "empty scene name");
-  for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    const MeshSource& src = scene.meshes[i].source;
-    if (src.kind == MeshSource::Kind::File &&
-        (src.file.empty() || !(src.scale > 0) || (src.up != 'y' && src.up != 'z')))
-      throw InputError(where, at("meshes", i), "file source needs a path, scale > 0, up y or z");
-  }
-  for (size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].name.empty()) throw InputError(where, at("objects", i) + ".name", "empty");
-  for (size_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].name.empty()) throw InputError(where, at("lights", i) + ".name", "empty");
-}
-
-bool isScalar(const ojson& j) {
-  return !j.is_object() && !j.is_array();
-}
-
-std::string dumpScalar(const ojson& j) {
-  return j.dump(-1, ' ', false, ojson::error_handler_t::replace);
-}
-
-/// 2-space indented JSON with arrays of scalars kept on one line ("[1, 0, 0]").
-void writePretty(const ojson& j, int indent, std::string& out) {
-  const bool nested = j.is_object() || (j.is_array() && !std::all_of(j.begin(), j.end(), isScalar));
-  if (!nested || j.empty()) {
-    if (j.is_array()) {
-      out += '[';
-      for (size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + dumpScalar(j[i]);
-      out += ']';
-    } else {
-      out += j.is_object() ? std::string("{}") : dumpScalar(j);
-    }
-    return;
-  }
-  out += j.is_object() ? "{\n" : "[\n";
-  size_t i = 0;
-  for (auto it = j.begin(); it != j.end(); ++it, ++i) {
-    out.append(static_cast<size_t>(indent) + 2, ' ');
-    if (j.is_object()) out += dumpScalar(ojson(it.key())) + ": ";
-    writePretty(it.value(), indent + 2, out);
-    out += (i + 1 < j.size()) ? ",\n" : "\n";
-  }
-  out.append(static_cast<size_t>(indent), ' ');
-  out += j.is_object() ? '}' : ']';
-}
-
 }  // namespace
 
 Scene parseLayout(const std::string& text, const std::string& path) {
@@ -656,7 +529,7 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   });
   auto material_ids =
       parseList(r, root, "materials", scene.materials,
-                [&](const json& j, const auto& f) { return parseMaterial(r, j, f); });
+                [&](const json& j, const auto& f) { return parseMaterial(r, j, f, base_dir); });
   const json& objects = r.array(root["objects"], "objects");
   for (size_t i = 0; i < objects.size(); ++i)
     scene.objects.push_back(parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids));
@@ -671,32 +544,6 @@ Scene parseLayout(const std::string& text, const std::string& path) {
 
 Scene loadLayout(const std::string& path) {
   return parseLayout(readTextFile(path), path);
-}
-
-std::string layoutToJson(const Scene& scene) {
-  const std::string where = fmt::format("scene '{}'", scene.name);
-  checkWritable(scene, where);
-  ojson root;
-  root["format"] = kLayoutFormat;
-  root["version"] = supportedLayoutVersions().back();
-  root["name"] = scene.name;
-  root["meshes"] = ojson::array();
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
-    root["meshes"].push_back(meshToJson(scene.meshes[i], where, at("meshes", i)));
-  root["materials"] = ojson::array();
-  for (const auto& m : scene.materials) root["materials"].push_back(materialToJson(m));
-  root["objects"] = ojson::array();
-  for (const auto& o : scene.objects) root["objects"].push_back(objectToJson(scene, o));
-  root["lights"] = ojson::array();
-  for (const auto& l : scene.lights) root["lights"].push_back(lightToJson(l));
-  std::string out;
-  writePretty(root, 0, out);
-  out += '\n';
-  return out;
-}
-
-void saveLayout(const Scene& scene, const std::string& path) {
-  writeTextAtomic(path, layoutToJson(scene));
 }
 
 }  // namespace inet

@@ -9,9 +9,12 @@
 namespace inet {
 namespace {
 
+/// A planar quad a, b, c, d (counter-clockwise seen from its front) with texture coordinates
+/// (0,0), (1,0), (1,1), (0,1): each face of a box or quad shows one copy of a texture.
 void addQuad(Mesh& m, const Vec3f& a, const Vec3f& b, const Vec3f& c, const Vec3f& d) {
   auto base = static_cast<uint32_t>(m.positions.size());
   m.positions.insert(m.positions.end(), {a, b, c, d});
+  m.uvs.insert(m.uvs.end(), {Vec2f(0, 0), Vec2f(1, 0), Vec2f(1, 1), Vec2f(0, 1)});
   m.triangles.push_back(Tri(base, base + 1, base + 2));
   m.triangles.push_back(Tri(base, base + 2, base + 3));
 }
@@ -29,27 +32,43 @@ Mesh box() {
   return m;
 }
 
+/// Side: `segments` + 1 columns (the seam is duplicated so u runs 0..1 around), smooth radial
+/// normals, v = 0 at the bottom and 1 at the top. Caps: their own vertices with flat normals and
+/// planar texture coordinates (x + 0.5, y + 0.5).
 Mesh cylinder(int segments) {
   Mesh m;
   const float r = 0.5f, h = 0.5f;
-  auto ring = [&](float z) {
-    for (int i = 0; i < segments; ++i) {
-      float a = 2.0f * static_cast<float>(M_PI) * i / segments;
-      m.positions.emplace_back(r * std::cos(a), r * std::sin(a), z);
-    }
+  auto vertex = [&](const Vec3f& p, const Vec3f& n, const Vec2f& uv) {
+    m.positions.push_back(p);
+    m.normals.push_back(n);
+    m.uvs.push_back(uv);
+    return static_cast<uint32_t>(m.positions.size() - 1);
   };
-  ring(-h);
-  ring(h);
-  auto bottom_c = static_cast<uint32_t>(m.positions.size());
-  m.positions.emplace_back(0.f, 0.f, -h);
-  m.positions.emplace_back(0.f, 0.f, h);
-  auto n = static_cast<uint32_t>(segments);
+  const auto n = static_cast<uint32_t>(segments);
+  for (uint32_t i = 0; i <= n; ++i) {  // side: bottom and top vertex of column i
+    const float a = 2.0f * static_cast<float>(M_PI) * static_cast<float>(i % n) / segments;
+    const Vec3f radial(std::cos(a), std::sin(a), 0.f);
+    const float u = static_cast<float>(i) / segments;
+    vertex(Vec3f(r * radial.x(), r * radial.y(), -h), radial, Vec2f(u, 0.f));
+    vertex(Vec3f(r * radial.x(), r * radial.y(), h), radial, Vec2f(u, 1.f));
+  }
   for (uint32_t i = 0; i < n; ++i) {
-    uint32_t j = (i + 1) % n;
-    m.triangles.push_back(Tri(i, j, n + j));
-    m.triangles.push_back(Tri(i, n + j, n + i));
-    m.triangles.push_back(Tri(bottom_c, j, i));
-    m.triangles.push_back(Tri(bottom_c + 1, n + i, n + j));
+    const uint32_t b0 = 2 * i, t0 = b0 + 1, b1 = 2 * i + 2, t1 = b1 + 1;
+    m.triangles.push_back(Tri(b0, b1, t1));
+    m.triangles.push_back(Tri(b0, t1, t0));
+  }
+  for (float z : {-h, h}) {  // caps
+    const Vec3f normal(0.f, 0.f, z > 0 ? 1.f : -1.f);
+    const uint32_t centre = vertex(Vec3f(0.f, 0.f, z), normal, Vec2f(0.5f, 0.5f));
+    for (uint32_t i = 0; i < n; ++i) {
+      const float a = 2.0f * static_cast<float>(M_PI) * static_cast<float>(i) / segments;
+      vertex(Vec3f(r * std::cos(a), r * std::sin(a), z), normal,
+             Vec2f(0.5f + r * std::cos(a), 0.5f + r * std::sin(a)));
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t p = centre + 1 + i, q = centre + 1 + (i + 1) % n;
+      m.triangles.push_back(z > 0 ? Tri(centre, p, q) : Tri(centre, q, p));
+    }
   }
   return m;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include <fmt/format.h>
@@ -104,6 +105,19 @@ void Scene::validate(const std::string& where) const {
           throw InputError(where, field, "triangle index out of range");
     for (const auto& p : m.positions)
       if (!p.allFinite()) throw InputError(where, field, "non-finite vertex position");
+    if (!m.normals.empty() && m.normals.size() != m.positions.size())
+      throw InputError(where, field + ".normals",
+                       fmt::format("{} normals for {} vertices (need one per vertex)",
+                                   m.normals.size(), m.positions.size()));
+    for (const auto& n : m.normals)
+      if (!n.allFinite() || std::fabs(n.norm() - 1.f) > 1e-3f)
+        throw InputError(where, field + ".normals", "normals must be finite and unit length");
+    if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+      throw InputError(where, field + ".uvs",
+                       fmt::format("{} texture coordinates for {} vertices (need one per vertex)",
+                                   m.uvs.size(), m.positions.size()));
+    for (const auto& uv : m.uvs)
+      if (!uv.allFinite()) throw InputError(where, field + ".uvs", "non-finite texture coordinate");
   }
   for (size_t i = 0; i < objects.size(); ++i) {
     const Object& o = objects[i];
@@ -171,6 +185,20 @@ void Scene::validate(const std::string& where) const {
           fmt::format("unknown metal '{}' (valid: {})", m.metal, fmt::join(metalNames(), ", ")));
     if (!m.emission.allFinite() || m.emission.minCoeff() < 0)
       throw InputError(where, "materials['" + m.id + "'].emission", "must be finite and >= 0");
+    if (!m.uv_scale.allFinite() || m.uv_scale.cwiseAbs().minCoeff() == 0.f)
+      throw InputError(where, field + ".uv_scale", "must be finite and non-zero");
+    const std::pair<const TextureRef*, const char*> textures[] = {
+        {&m.albedo_texture, ".albedo_texture"},
+        {&m.roughness_texture, ".roughness_texture"},
+        {&m.normal_texture, ".normal_texture"}};
+    for (const auto& [tex, key] : textures) {
+      std::error_code ec;
+      if (!tex->empty() && !std::filesystem::is_regular_file(tex->path, ec))
+        throw InputError(where, field + key,
+                         fmt::format("'{}': {}", tex->path,
+                                     std::filesystem::exists(tex->path, ec) ? "is not a file"
+                                                                            : "file not found"));
+    }
   }
 }
 

@@ -19,6 +19,7 @@ namespace inet {
 
 using Vec3f = Eigen::Vector3f;
 using Tri = Eigen::Matrix<uint32_t, 3, 1>;
+using Vec2f = Eigen::Vector2f;
 
 /// Where a mesh came from, so a layout file can be written back without inlining geometry.
 struct MeshSource {
@@ -33,11 +34,15 @@ struct MeshSource {
 };
 
 /// Geometry in object space: triangles, or one analytic sphere (centre 0, `sphere_radius`).
+/// `normals` and `uvs`, when not empty, have one entry per position: smooth shading normals
+/// (unit length, object space) and texture coordinates (OpenGL convention: v points up the image).
 struct Mesh {
   std::string id;
   MeshSource source;
   std::vector<Vec3f> positions;
   std::vector<Tri> triangles;
+  std::vector<Vec3f> normals;  ///< per-vertex shading normals; empty = flat (geometric) shading
+  std::vector<Vec2f> uvs;      ///< per-vertex texture coordinates; empty = untextured
   float sphere_radius = 0.0f;  ///< > 0 marks an analytic sphere; positions/triangles then empty
   bool isSphere() const { return sphere_radius > 0.0f; }
 };
@@ -45,6 +50,15 @@ struct Mesh {
 /// Material families: the InteriorNet paper's four (Lambertian; microfacet: conductor and
 /// coated plastic; dielectric: rough/smooth glass and thin panes; transmission: translucent).
 enum class MaterialType { Lambertian, Conductor, Plastic, Dielectric, ThinDielectric, Translucent };
+
+/// An image file a material reads: `file` as written in the layout (relative to the layout's
+/// folder, so saving reproduces it) and `path`, the resolved path the renderer opens.
+struct TextureRef {
+  std::string file;
+  std::string path;
+  bool empty() const { return path.empty(); }
+  bool operator==(const TextureRef&) const = default;
+};
 
 struct Material {
   std::string id;
@@ -57,6 +71,15 @@ struct Material {
   std::string metal = "aluminium";  ///< conductor: measured preset (see metalNames())
   float ior = 1.5f;                 ///< plastic coating, dielectric (relative index of refraction)
   Vec3f transmittance{1.f, 1.f, 1.f};  ///< dielectric tint / translucent diffuse transmission
+  // Textures (need the mesh's uvs; a mesh without uvs reads texel (0, 0)):
+  TextureRef albedo_texture;     ///< sRGB-encoded colour image; multiplies `albedo` (as glTF)
+  TextureRef roughness_texture;  ///< linear image, grey or the G channel of RGB (glTF's
+                                 ///< metallic-roughness layout); multiplies `roughness`
+  TextureRef normal_texture;     ///< tangent-space normal map, linear, OpenGL convention (+Y up)
+  Vec2f uv_scale{1.f, 1.f};      ///< texture coordinates are multiplied by this (tiling)
+  bool isTextured() const {
+    return !albedo_texture.empty() || !roughness_texture.empty() || !normal_texture.empty();
+  }
   bool isEmissive() const { return emission.maxCoeff() > 0.0f; }
 };
 

@@ -1,14 +1,18 @@
-// PNG and EXR round trips, byte order, determinism and failure paths of dataset/image_io.
-#include "dataset/image_io.h"
+// PNG and EXR round trips, byte order, determinism, JPEG reading and failure paths of
+// dataset/image_io.
+#include "core/image_io.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "dataset_test_util.h"
+#include "../dataset/dataset_test_util.h"
+#include "jpeg_test_util.h"
 
 namespace inet {
 namespace {
@@ -196,6 +200,99 @@ TEST(ImageIo, ExrIsDeterministicAndReportsMissingChannels) {
   EXPECT_THROW(readExr(dir / "missing.exr", {"Z"}), InputError);
   std::ofstream(dir / "junk.exr") << "junk";
   EXPECT_THROW(readExr(dir / "junk.exr", {"Z"}), InputError);
+}
+
+/// A smooth colour (or grey) gradient, at most 243 for w <= 40, h <= 24: JPEG at quality 95
+/// reproduces it within a few codes.
+ImageU8 gradient(int w, int h, int c) {
+  ImageU8 img(w, h, c);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < c; ++k)
+        img.at(x, y, k) = static_cast<uint8_t>(20 + 3 * x + 2 * y + 30 * k);
+  return img;
+}
+
+/// Largest absolute difference between two images of equal shape.
+int maxAbsDiff(const ImageU8& a, const ImageU8& b) {
+  int worst = 0;
+  for (size_t i = 0; i < a.data.size(); ++i)
+    worst = std::max(worst, std::abs(a.data[i] - b.data[i]));
+  return worst;
+}
+
+/// Message of the InputError thrown by `f`, or "" when nothing was thrown.
+template <class F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(ImageIo, JpegReadsColourAndGreyWithinJpegTolerance) {
+  TempDir dir("jpeg");
+  for (int c : {3, 1}) {
+    const ImageU8 src = gradient(40, 24, c);
+    const auto p = dir / ("g" + std::to_string(c) + ".jpg");
+    test::writeJpegForTest(p, src, 95);
+    const ImageU8 img = readJpeg8(p);
+    ASSERT_EQ(img.width, 40);
+    ASSERT_EQ(img.height, 24);
+    ASSERT_EQ(img.channels, c);
+    // Quality 95 on a smooth ramp: a few codes at most (chroma subsampling included), and the
+    // mean error is well under one code. A transposed or channel-swapped read fails both.
+    EXPECT_LE(maxAbsDiff(img, src), 6) << c << " channels";
+    double sum = 0.0;
+    for (size_t i = 0; i < img.data.size(); ++i) sum += std::abs(img.data[i] - src.data[i]);
+    EXPECT_LT(sum / img.data.size(), 1.0) << c << " channels";
+  }
+}
+
+TEST(ImageIo, JpegReadsRealPhotographFromShared) {
+  const auto p = std::filesystem::path(INET_SHARED_DIR) /
+                 "data/scenes/bitterli_living_room_mitsuba/textures/wood.jpg";
+  if (!std::filesystem::exists(p))
+    GTEST_SKIP() << "needs ../shared/data/scenes/bitterli_living_room_mitsuba/textures/wood.jpg";
+  const ImageU8 img = readJpeg8(p);
+  EXPECT_GT(img.width, 0);
+  EXPECT_GT(img.height, 0);
+  EXPECT_EQ(img.channels, 3);
+  EXPECT_EQ(img.data.size(), img.pixelCount() * 3);
+}
+
+TEST(ImageIo, JpegReadErrorsNameTheFile) {
+  TempDir dir("jpegerr");
+  std::string msg = errorOf([&] { readJpeg8(dir / "missing.jpg"); });
+  EXPECT_NE(msg.find("missing.jpg"), std::string::npos) << msg;
+
+  std::ofstream(dir / "text.jpg") << "definitely not a jpeg";
+  msg = errorOf([&] { readJpeg8(dir / "text.jpg"); });
+  EXPECT_NE(msg.find("text.jpg"), std::string::npos) << msg;
+
+  std::filesystem::create_directories(dir / "folder.jpg");
+  msg = errorOf([&] { readJpeg8(dir / "folder.jpg"); });
+  EXPECT_NE(msg.find("folder.jpg"), std::string::npos) << msg;
+
+  // Truncated inside the entropy-coded data: libjpeg only warns and pads with grey; we refuse.
+  test::writeJpegForTest(dir / "full.jpg", pattern<uint8_t>(64, 64, 3, 37), 95);
+  const std::string bytes = readBytes(dir / "full.jpg");
+  std::ofstream(dir / "cut.jpg", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  msg = errorOf([&] { readJpeg8(dir / "cut.jpg"); });
+  EXPECT_NE(msg.find("cut.jpg"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("bad JPEG"), std::string::npos) << msg;
+  // Header only (cut before the scan): the error comes from libjpeg's error_exit path.
+  std::ofstream(dir / "head.jpg", std::ios::binary) << bytes.substr(0, 40);
+  msg = errorOf([&] { readJpeg8(dir / "head.jpg"); });
+  EXPECT_NE(msg.find("head.jpg"), std::string::npos) << msg;
+
+  ImageU8 cmyk(8, 8, 4, 100);
+  test::writeJpegForTest(dir / "cmyk.jpg", cmyk, 90);
+  msg = errorOf([&] { readJpeg8(dir / "cmyk.jpg"); });
+  EXPECT_NE(msg.find("cmyk.jpg"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("CMYK"), std::string::npos) << msg;
 }
 
 }  // namespace

@@ -17,7 +17,7 @@
 #include <memory>
 
 #include "core/atomic_file.h"
-#include "dataset/image_io.h"
+#include "core/image_io.h"
 #include "render/renderer.h"
 #include "scene/assimp_importer.h"
 

@@ -2,6 +2,8 @@
 // and a SceneNet layout from ../shared when present.
 #include "scene/assimp_importer.h"
 
+#include "core/image_io.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
@@ -263,6 +265,76 @@ TEST(AssimpImporter, BenchmarkRoom) {
   EXPECT_EQ(s.objects[findObject(s, "desk_chair")].nyu40, id("chair"));
   EXPECT_EQ(s.objects[findObject(s, "room_walls")].nyu40, id("wall"));
   EXPECT_EQ(report.unmatched_names, (std::vector<std::string>{"decor_ball", "decor_ring"}));
+}
+
+TEST(AssimpImporter, TexturedObjKeepsUvsNormalsAndMaps) {
+  TempDir tmp;
+  ImageU8 texels(2, 2, 3, 128);
+  writePng(tmp.path() / "maps" / "wood.png", texels);
+  writePng(tmp.path() / "maps" / "wood_n.png", texels);
+  tmp.write("quad.mtl",
+            "newmtl wood\nKd 0.3 0.3 0.3\nmap_Kd maps/wood.png\nnorm maps/wood_n.png\n"
+            "map_bump maps/wood_n.png\n"
+            "newmtl plain\nKd 0.5 0.25 0.125\nmap_Kd maps/absent.png\n");
+  const std::string obj =
+      tmp.write("quad.obj",
+                "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\n"
+                "vt 0 0\nvt 2 0\nvt 2 1\nvt 0 1\nvn 0 -1 0\nvn 0 -1 0\nvn 0 -0.6 0.8\n"
+                "o floor\nusemtl wood\nf 1/1/1 2/2/2 3/3/3 4/4/2\n"
+                "o flat\nusemtl plain\nf 1 2 3\n");
+  ImportOptions opt;
+  opt.up = 'y';
+  ImportReport report;
+  Scene s = importMeshScene(obj, opt, &report);
+  const Object& floor = s.objects[findObject(s, "floor")];
+  const Mesh& m = s.meshes[floor.mesh];
+  ASSERT_EQ(m.uvs.size(), m.positions.size());
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    // texture coordinates follow their vertex: u = 2 x, v = file z (before the y-up turn)
+    const Vec3f& p = m.positions[i];
+    EXPECT_NEAR(m.uvs[i].x(), 2 * p.x(), 1e-6);
+    EXPECT_NEAR(m.uvs[i].y(), -p.y(), 1e-6);  // file z = -world y after the y-up conversion
+    EXPECT_NEAR(m.normals[i].norm(), 1.f, 1e-6);
+    EXPECT_LT(m.normals[i].z(), -0.5f) << "file -Y becomes world -Z";
+  }
+  const Material& wood = s.materials[floor.material];
+  EXPECT_TRUE(std::filesystem::equivalent(wood.albedo_texture.path, tmp.path() / "maps/wood.png"));
+  EXPECT_TRUE(
+      std::filesystem::equivalent(wood.normal_texture.path, tmp.path() / "maps/wood_n.png"));
+  EXPECT_EQ(wood.albedo, Vec3f::Ones()) << "an OBJ's map_Kd replaces Kd";
+  const Object& flat = s.objects[findObject(s, "flat")];
+  EXPECT_TRUE(s.meshes[flat.mesh].normals.empty()) << "no vn: flat shading";
+  EXPECT_TRUE(s.meshes[flat.mesh].uvs.empty());
+  const Material& plain = s.materials[flat.material];
+  EXPECT_TRUE(plain.albedo_texture.empty()) << "missing image: skipped";
+  EXPECT_EQ(plain.albedo, Vec3f(0.5f, 0.25f, 0.125f));
+  EXPECT_EQ(report.skipped_textures, 1u);
+  EXPECT_EQ(report.ignored_bump_maps, 1u);
+  EXPECT_NE(report.summary("otherprop").find("bump"), std::string::npos);
+}
+
+TEST(AssimpImporter, SceneNetTextureFoldersPickOneImageStably) {
+  const auto dir = test::sharedDir() / "data" / "scenes" / "scenenet_rgbd_layouts";
+  const auto bedroom = dir / "bedroom" / "bedroom3_layout.obj";
+  if (!std::filesystem::exists(bedroom))
+    GTEST_SKIP() << "needs ../shared/data/scenes/scenenet_rgbd_layouts (absent)";
+  ImportOptions opt;
+  opt.up = 'y';
+  Scene a = importMeshScene(bedroom.string(), opt), b = importMeshScene(bedroom.string(), opt);
+  size_t textured = 0;
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    const TextureRef& t = a.materials[i].albedo_texture;
+    EXPECT_EQ(t, b.materials[i].albedo_texture) << "the same image on every run";
+    if (t.empty()) continue;
+    ++textured;
+    // map_Kd names a folder of texture_library; the image chosen lies in it
+    EXPECT_NE(t.path.find("texture_library"), std::string::npos) << t.path;
+    EXPECT_TRUE(std::filesystem::is_regular_file(t.path)) << t.path;
+  }
+  EXPECT_GE(textured, 10u);
+  const Object& wall = a.objects[findObject(a, "wall.002")];
+  EXPECT_FALSE(a.meshes[wall.mesh].uvs.empty());
 }
 
 TEST(AssimpImporter, SceneNetLayoutIsYUp) {

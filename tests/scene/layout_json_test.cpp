@@ -209,6 +209,39 @@ TEST(LayoutJson, RelativeFileMeshResolvesAgainstTheLayoutFolder) {
   expectScenesEqual(s, loadLayout(copy));
 }
 
+TEST(LayoutJson, TexturesNormalsAndUvsRoundTrip) {
+  TempDir dir;
+  dir.write("tex/wood.png", "not read by the loader, only checked to exist");
+  const std::string path = dir.write("room/layout.json", R"({
+    "format": "interiornet-layout", "version": 1, "name": "textured",
+    "meshes": [{"id": "tri", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                "triangles": [[0, 1, 2]], "normals": [[0, 0, 2], [0, 0, 1], [0, 0.6, 0.8]],
+                "uvs": [[0, 0], [2, 0], [0, 0.5]]}],
+    "materials": [{"id": "wood", "type": "plastic", "albedo": [1, 1, 1], "roughness": 0.5,
+                   "albedo_texture": "../tex/wood.png", "roughness_texture": "../tex/wood.png",
+                   "normal_texture": "../tex/wood.png", "uv_scale": [4, 0.5]}],
+    "objects": [{"name": "floor", "mesh": "tri", "material": "wood", "nyu40": 2, "instance": 1,
+                 "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]})");
+  Scene s = loadLayout(path);
+  const Mesh& m = s.meshes[0];
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_EQ(m.normals[0], Vec3f(0, 0, 1)) << "normalised on load";
+  ASSERT_EQ(m.uvs.size(), 3u);
+  EXPECT_EQ(m.uvs[1], Vec2f(2, 0));
+  const Material& mat = s.materials[0];
+  EXPECT_EQ(mat.albedo_texture.file, "../tex/wood.png") << "as written";
+  EXPECT_TRUE(std::filesystem::equivalent(mat.albedo_texture.path, dir.path() / "tex/wood.png"));
+  EXPECT_EQ(mat.uv_scale, Vec2f(4, 0.5f));
+  // saved next to the original, it reloads to the same scene and the same text
+  const std::string text = layoutToJson(s);
+  const std::string again = dir.write("room/again.json", text);
+  Scene s2 = loadLayout(again);
+  EXPECT_EQ(layoutToJson(s2), text);
+  EXPECT_EQ(s2.meshes[0].uvs, m.uvs);
+  EXPECT_EQ(s2.meshes[0].normals, m.normals);
+  EXPECT_EQ(s2.materials[0].normal_texture, mat.normal_texture);
+}
+
 TEST(LayoutJson, WriterRefusesScenesItCannotReload) {
   Scene s;
   s.meshes.push_back(makePrimitive("box", {}, "t", "m"));
@@ -436,6 +469,31 @@ std::vector<BadLayout> objectCases() {
        "expected true or false"},
       {"objects_not_array", edited([](json& j) { j["objects"] = json::object(); }), "objects",
        "expected an array"},
+      {"missing_texture", edited([](json& j) { j["materials"][0]["albedo_texture"] = "no.png"; }),
+       "materials[0].albedo_texture", "no.png': file not found"},
+      {"texture_is_a_folder", edited([](json& j) { j["materials"][0]["normal_texture"] = "."; }),
+       "materials[0].normal_texture", "is not a file"},
+      {"roughness_map_on_lambertian",
+       edited([](json& j) { j["materials"][0]["roughness_texture"] = "r.png"; }),
+       "materials[0].roughness_texture", "unknown key"},
+      {"uv_scale_zero", edited([](json& j) {
+         j["materials"][0]["uv_scale"] = {1, 0};
+       }),
+       "materials[0].uv_scale", "must not be 0"},
+      {"uvs_count", edited([](json& j) {
+         j["meshes"][0] = {{"id", "box"},
+                           {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                           {"triangles", {{0, 1, 2}}},
+                           {"uvs", {{0, 0}, {1, 0}}}};
+       }),
+       "meshes[0].uvs", "2 entries for 3 vertices"},
+      {"zero_normal", edited([](json& j) {
+         j["meshes"][0] = {{"id", "box"},
+                           {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                           {"triangles", {{0, 1, 2}}},
+                           {"normals", {{0, 0, 1}, {0, 0, 0}, {0, 0, 1}}}};
+       }),
+       "meshes[0].normals[1]", "must not be zero"},
   };
 }
 

@@ -96,6 +96,44 @@ TEST(Primitives, CylinderIsClosedAndOutward) {
   EXPECT_EQ(makePrimitive("cylinder", {}, "t", "c").triangles.size(), 4u * 24u);
 }
 
+TEST(Primitives, TextureCoordinatesAndCylinderNormals) {
+  for (const char* name : {"box", "quad", "cylinder"}) {
+    SCOPED_TRACE(name);
+    Mesh m = makePrimitive(name, {}, "t", "m");
+    ASSERT_EQ(m.uvs.size(), m.positions.size());
+    for (const auto& uv : m.uvs) {
+      EXPECT_GE(uv.minCoeff(), 0.f);
+      EXPECT_LE(uv.maxCoeff(), 1.f);
+    }
+  }
+  // each box face maps the whole texture once: its uv area is 1 (two triangles of 1/2)
+  Mesh box = makePrimitive("box", {}, "t", "m");
+  double uv_area = 0;
+  for (const auto& t : box.triangles) {
+    const Vec2f a = box.uvs[t[1]] - box.uvs[t[0]], b = box.uvs[t[2]] - box.uvs[t[0]];
+    uv_area += 0.5 * std::fabs(a.x() * b.y() - a.y() * b.x());
+  }
+  EXPECT_NEAR(uv_area, 6.0, 1e-6);
+  EXPECT_TRUE(box.normals.empty()) << "flat faces need no vertex normals";
+  // cylinder: side normals radial (smooth), cap normals +-z, all unit and outward
+  Mesh cyl = makePrimitive("cylinder", {{"segments", 12}}, "t", "c");
+  ASSERT_EQ(cyl.normals.size(), cyl.positions.size());
+  for (const auto& t : cyl.triangles) {
+    const Vec3 face = faceNormal(cyl, t).normalized();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3f& n = cyl.normals[t[k]];
+      EXPECT_NEAR(n.norm(), 1.f, 1e-6);
+      EXPECT_GT(n.cast<double>().dot(face), 0.9) << "vertex normal on the face's side";
+      if (std::fabs(face.z()) < 0.5) {  // side triangle: radial, horizontal
+        const Vec3f& p = cyl.positions[t[k]];
+        EXPECT_NEAR(n.x(), 2 * p.x(), 1e-5);
+        EXPECT_NEAR(n.y(), 2 * p.y(), 1e-5);
+        EXPECT_EQ(n.z(), 0.f);
+      }
+    }
+  }
+}
+
 TEST(Primitives, QuadFacesUp) {
   Mesh quad = makePrimitive("quad", {}, "test", "quad");
   ASSERT_EQ(quad.triangles.size(), 2u);
