@@ -87,6 +87,10 @@ void walkNodes(const aiNode* node, const Mat4& T_parent,
   for (unsigned c = 0; c < node->mNumChildren; ++c) walkNodes(node->mChildren[c], T, visit);
 }
 
+/// Vertex normals further than this from their triangle's face normal mark a hard edge that the
+/// file smoothed over (see MeshBuilder::flattenHardEdges).
+constexpr float kMaxNormalDeviationDeg = 35.f;
+
 /// Collects triangles of one or more aiMeshes into a Mesh. Normals are kept only when every part
 /// has valid ones (otherwise the merged mesh is shaded flat); texture coordinates when any part
 /// has them (parts without read (0, 0)).
@@ -140,12 +144,42 @@ struct MeshBuilder {
     return dropped;
   }
 
-  Mesh finish() {
+  /// The mesh; `flattened` counts triangles whose vertex normals were replaced (see below).
+  Mesh finish(size_t* flattened = nullptr) {
     if (!all_normals) mesh.normals.clear();
     if (!any_uvs || !std::all_of(mesh.uvs.begin(), mesh.uvs.end(),
                                  [](const Vec2f& uv) { return uv.allFinite(); }))
       mesh.uvs.clear();
+    if (!mesh.normals.empty()) flattenHardEdges(flattened);
     return std::move(mesh);
+  }
+
+  /// Exporters often smooth across hard edges (SceneNet's walls and floors are boxes with one
+  /// smoothing group, so a corner's normal is the mean of three faces, 55 degrees off each): a
+  /// flat wall then shades with a gradient. A triangle with a vertex normal more than
+  /// kMaxNormalDeviationDeg off its face normal gets its own three vertices with the face
+  /// normal (flat). Genuinely smooth meshes stay smooth: a 6-sided cylinder's normals deviate by
+  /// 30 degrees.
+  void flattenHardEdges(size_t* flattened) {
+    static const float kCos = std::cos(kMaxNormalDeviationDeg * static_cast<float>(M_PI) / 180.f);
+    const bool uvs = !mesh.uvs.empty();
+    for (Tri& t : mesh.triangles) {
+      const Vec3f e1 = mesh.positions[t[1]] - mesh.positions[t[0]];
+      const Vec3f e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+      const Vec3f c = e1.cross(e2);
+      if (!(c.norm() > 0.f)) continue;  // degenerate: never hit
+      const Vec3f face = c.normalized();
+      bool hard = false;
+      for (int k = 0; k < 3; ++k) hard = hard || mesh.normals[t[k]].dot(face) < kCos;
+      if (!hard) continue;
+      for (int k = 0; k < 3; ++k) {
+        mesh.positions.push_back(mesh.positions[t[k]]);
+        mesh.normals.push_back(face);
+        if (uvs) mesh.uvs.push_back(mesh.uvs[t[k]]);
+        t[k] = static_cast<uint32_t>(mesh.positions.size() - 1);
+      }
+      if (flattened) ++*flattened;
+    }
   }
 };
 
@@ -251,7 +285,7 @@ int addSharedMesh(const aiScene* ai, unsigned index, const Mat4& C, Scene& scene
   const aiMesh* in = ai->mMeshes[index];
   MeshBuilder builder;
   report.dropped_faces += builder.append(in, C);
-  Mesh mesh = builder.finish();
+  Mesh mesh = builder.finish(&report.flattened_triangles);
   if (mesh.triangles.empty()) return -1;
   mesh.id = uniqueId(in->mName.C_Str(), used_ids);
   mesh.source.kind = MeshSource::Kind::Inline;
@@ -320,7 +354,7 @@ struct SceneBuilder {
       } else {
         MeshBuilder builder;
         report.dropped_faces += builder.append(in, C * T_file);
-        Mesh baked = builder.finish();
+        Mesh baked = builder.finish(&report.flattened_triangles);
         baked.id = uniqueId(obj.name, mesh_ids);
         scene.meshes.push_back(std::move(baked));
         obj.mesh = static_cast<int>(scene.meshes.size()) - 1;
@@ -378,6 +412,11 @@ std::string ImportReport::summary(const std::string& default_category) const {
   if (dropped_faces > 0)
     parts.push_back(
         fmt::format("{} non-triangle face(s) (lines or points) were skipped", dropped_faces));
+  if (flattened_triangles > 0)
+    parts.push_back(fmt::format(
+        "{} triangle(s) had vertex normals smoothed across a hard edge (more than {} degrees "
+        "off the face) and are shaded flat",
+        flattened_triangles, kMaxNormalDeviationDeg));
   if (skipped_textures > 0)
     parts.push_back(fmt::format(
         "{} texture(s) were embedded in the file, missing or an empty folder and were skipped",

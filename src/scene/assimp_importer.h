@@ -35,6 +35,7 @@ struct ImportReport {
   std::vector<std::string> unmatched_names;  ///< distinct unmatched names, in file order
   size_t dropped_faces = 0;                  ///< non-triangle faces (lines, points) skipped
   size_t clamped_materials = 0;              ///< materials whose diffuse colour left [0, 1]
+  size_t flattened_triangles = 0;            ///< triangles whose vertex normals crossed a hard edge
   size_t skipped_textures = 0;               ///< textures embedded, missing, or empty folders
   size_t ignored_bump_maps = 0;  ///< materials with a bump (height) map, which is not supported
 

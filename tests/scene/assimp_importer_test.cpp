@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "core/error.h"
@@ -279,7 +280,7 @@ TEST(AssimpImporter, TexturedObjKeepsUvsNormalsAndMaps) {
   const std::string obj =
       tmp.write("quad.obj",
                 "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\n"
-                "vt 0 0\nvt 2 0\nvt 2 1\nvt 0 1\nvn 0 -1 0\nvn 0 -1 0\nvn 0 -0.6 0.8\n"
+                "vt 0 0\nvt 2 0\nvt 2 1\nvt 0 1\nvn 0 -1 0\nvn 0 -1 0\nvn 0 -0.9 0.43589\n"
                 "o floor\nusemtl wood\nf 1/1/1 2/2/2 3/3/3 4/4/2\n"
                 "o flat\nusemtl plain\nf 1 2 3\n");
   ImportOptions opt;
@@ -298,6 +299,10 @@ TEST(AssimpImporter, TexturedObjKeepsUvsNormalsAndMaps) {
     EXPECT_NEAR(m.normals[i].norm(), 1.f, 1e-6);
     EXPECT_LT(m.normals[i].z(), -0.5f) << "file -Y becomes world -Z";
   }
+  // 26 degrees off the face: a smooth surface, kept (file +Z becomes world -Y)
+  EXPECT_EQ(std::count_if(m.normals.begin(), m.normals.end(),
+                          [](const Vec3f& n) { return n.y() < -0.4f; }),
+            1);
   const Material& wood = s.materials[floor.material];
   EXPECT_TRUE(std::filesystem::equivalent(wood.albedo_texture.path, tmp.path() / "maps/wood.png"));
   EXPECT_TRUE(
@@ -335,6 +340,17 @@ TEST(AssimpImporter, SceneNetTextureFoldersPickOneImageStably) {
   EXPECT_GE(textured, 10u);
   const Object& wall = a.objects[findObject(a, "wall.002")];
   EXPECT_FALSE(a.meshes[wall.mesh].uvs.empty());
+  // SceneNet smooths its box-shaped walls and floors over their corners (vn at 55 degrees to
+  // each face); those triangles come out flat: every vertex normal equals its face normal
+  const Object& floor = a.objects[findObject(a, "floor.002")];
+  const Mesh& fm = a.meshes[floor.mesh];
+  ASSERT_FALSE(fm.normals.empty());
+  for (const Tri& t : fm.triangles) {
+    const Vec3f c =
+        (fm.positions[t[1]] - fm.positions[t[0]]).cross(fm.positions[t[2]] - fm.positions[t[0]]);
+    if (c.norm() < 1e-3f) continue;
+    for (int k = 0; k < 3; ++k) EXPECT_GT(fm.normals[t[k]].dot(c.normalized()), 0.819f);
+  }
 }
 
 TEST(AssimpImporter, SceneNetLayoutIsYUp) {
