@@ -155,7 +155,9 @@ PassMask lensPasses(PassMask passes, LensType type) {
 /// trajectory (held at its ends). A zero shutter gives a static camera.
 CameraExposure exposureAt(const Trajectory& traj, size_t k, const Shutter& shutter) {
   const TimeNs t = traj.poses[k].t_ns, half = (shutter.exposure_ns + shutter.readout_ns) / 2;
-  CameraExposure ex = CameraExposure::fixed(traj.poses[k].T_world_camera);
+  // scene time (moving objects) runs from the first frame's timestamp
+  CameraExposure ex =
+      CameraExposure::fixed(traj.poses[k].T_world_camera, t - half - traj.poses.front().t_ns);
   ex.shutter = shutter;
   if (half > 0) {
     const TimeNs open = t - half, close = open + shutter.exposure_ns + shutter.readout_ns;

@@ -8,8 +8,8 @@
 
 #include "common.h"
 #include "core/error.h"
-#include "dataset/image_encode.h"
 #include "core/image_io.h"
+#include "dataset/image_encode.h"
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "trajectory/builtin_trajectory.h"
@@ -30,6 +30,7 @@ struct RenderArgs {
   ResponseArgs response;
   std::string camera_end;
   double exposure_ms = 0.0;
+  double time_s = 0.0;
   double readout_ms = 0.0;
   std::string out;
 };
@@ -90,6 +91,9 @@ void runRender(const RenderArgs& a) {
     throw InputError("", "--exposure-ms", "exposure and readout times must be >= 0");
   exposure.shutter.exposure_ns = static_cast<TimeNs>(a.exposure_ms * 1e6);
   exposure.shutter.readout_ns = static_cast<TimeNs>(a.readout_ms * 1e6);
+  if (!std::isfinite(a.time_s) || std::fabs(a.time_s) > 1e6)
+    throw InputError("", "--time", "must be a finite number of seconds (|t| <= 1e6)");
+  exposure.scene_time_open_ns = static_cast<TimeNs>(std::llround(a.time_s * 1e9));
   renderer.render(lens, exposure, opt, 0, f);
   ImageF img;
   if (has(pass, Pass::Rgb))
@@ -143,6 +147,9 @@ void registerRender(CLI::App& app) {
                   "camera.json of the pose when the exposure ends (motion blur); the pose of "
                   "--camera is where it starts");
   cmd->add_option("--exposure-ms", a->exposure_ms, "exposure time of each row in ms (default 0)");
+  cmd->add_option("--time", a->time_s,
+                  "scene time in seconds when the exposure opens: where moving objects (layout "
+                  "'motion') are (default 0)");
   cmd->add_option(
       "--readout-ms", a->readout_ms,
       "rolling shutter: time from the first to the last row's start in ms (default 0 = global)");

@@ -63,7 +63,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
 
   std::vector<int> uses(scene.meshes.size(), 0);
-  for (const auto& o : scene.objects) ++uses[o.mesh];
+  bool any_motion = false;
+  for (const auto& o : scene.objects) {
+    ++uses[o.mesh];
+    any_motion = any_motion || o.moving();
+  }
   mesh_scenes_.assign(scene.meshes.size(), nullptr);
 
   objects_.resize(scene.objects.size());
@@ -78,15 +82,25 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     s.nyu40 = static_cast<uint8_t>(o.nyu40);
     s.instance = static_cast<uint16_t>(o.instance);
     setUpShading(o, mesh, mat, s);
-    bool instanced = mesh.isSphere() || uses[o.mesh] > 1;
+    // with moving objects every object is an instance: a new window then rebuilds only the top
+    // level over a few hundred instances, not every triangle of the static scene
+    bool instanced = mesh.isSphere() || uses[o.mesh] > 1 || any_motion;
     if (instanced) {
       Eigen::Matrix3d lin = o.T_world_object.block<3, 3>(0, 0);
       s.normal_to_world = lin.inverse().transpose().cast<float>();
       RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(inst, meshScene(o.mesh, scene));
       Eigen::Matrix<float, 3, 4> xfm = o.T_world_object.block<3, 4>(0, 0).cast<float>();
-      // column-major 3x4: Embree's RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR
-      rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.data());
+      if (o.moving()) {
+        rtcSetGeometryTimeStepCount(inst, kMotionSteps);
+        for (int k = 0; k < kMotionSteps; ++k)
+          rtcSetGeometryTransform(inst, k, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.data());
+        rtcRetainGeometry(inst);
+        moving_.push_back({static_cast<int>(i), inst, o});
+      } else {
+        // column-major 3x4: Embree's RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.data());
+      }
       rtcCommitGeometry(inst);
       rtcAttachGeometry(scene_, inst);
       rtcReleaseGeometry(inst);
@@ -95,7 +109,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     }
     geom_to_object_.push_back(static_cast<int>(i));
   }
-  rtcCommitScene(scene_);
+  if (any_motion) {
+    setWindow(0, 0);
+  } else {
+    rtcCommitScene(scene_);
+  }
   checkDevice(device_, "scene build");
   buildLights(scene);
   build_ms_ =
@@ -103,15 +121,45 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
 }
 
 EmbreeScene::~EmbreeScene() {
+  for (MovingObject& m : moving_) rtcReleaseGeometry(m.instance);
   if (scene_) rtcReleaseScene(scene_);
   for (RTCScene s : mesh_scenes_)
     if (s) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
 }
 
+void EmbreeScene::setWindow(TimeNs open_ns, TimeNs span_ns) {
+  if (moving_.empty() || (open_ns == window_open_ && span_ns == window_span_)) return;
+  window_open_ = open_ns;
+  window_span_ = span_ns;
+  for (MovingObject& m : moving_) {
+    for (int k = 0; k < kMotionSteps; ++k) {
+      const double t_s =
+          1e-9 * (static_cast<double>(open_ns) +
+                  static_cast<double>(span_ns) * k / static_cast<double>(kMotionSteps - 1));
+      Eigen::Matrix<float, 3, 4> xfm = m.motion.transformAt(t_s).block<3, 4>(0, 0).cast<float>();
+      rtcSetGeometryTransform(m.instance, k, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.data());
+    }
+    rtcCommitGeometry(m.instance);
+    const Mat4 T_mid = m.motion.transformAt(
+        1e-9 * (static_cast<double>(open_ns) + 0.5 * static_cast<double>(span_ns)));
+    setObjectTransform(objects_[m.object], T_mid);
+  }
+  rtcCommitScene(scene_);
+  checkDevice(device_, "moving objects");
+}
+
+void EmbreeScene::setObjectTransform(ObjectShading& s, const Mat4& T_world_object) const {
+  const Eigen::Matrix3d L = T_world_object.block<3, 3>(0, 0);
+  s.linear = L.cast<float>();
+  s.vertex_normal_to_world = L.inverse().transpose().cast<float>();
+  s.normal_to_world = s.vertex_normal_to_world;  // moving objects are instances: Ng in object space
+  s.translation = T_world_object.block<3, 1>(0, 3).cast<float>();
+}
+
 void EmbreeScene::setUpShading(const Object& o, const Mesh& mesh, const Material& mat,
                                ObjectShading& s) {
-  const Eigen::Matrix3d L = o.T_world_object.block<3, 3>(0, 0);
+  const Mat3 L = o.T_world_object.block<3, 3>(0, 0);
   s.linear = L.cast<float>();
   s.vertex_normal_to_world = L.inverse().transpose().cast<float>();
   s.translation = o.T_world_object.block<3, 1>(0, 3).cast<float>();

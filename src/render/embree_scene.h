@@ -90,6 +90,17 @@ class EmbreeScene {
   /// leaves a material's normal map out (the ground-truth normal pass).
   void surface(int object, unsigned prim, float u, float v, const Vec3f& ng, const Vec3f& p,
                const Vec3f& d, float footprint, SurfacePoint& sp, bool normal_map = true) const;
+  /// True when some object moves (Object::motion). Every object is then an instance, so that a
+  /// new exposure window only rebuilds the top level.
+  bool hasMotion() const { return !moving_.empty(); }
+  /// Places moving objects for an exposure window starting at scene time `open_ns` and lasting
+  /// `span_ns` (0: an instant). Rays carry time = (t - open) / span in [0, 1]; Embree
+  /// interpolates each moving instance between kMotionSteps transforms spread over the window.
+  /// Shading frames (normal matrices) use the transform at the window's middle. Not thread-safe:
+  /// call between renders.
+  void setWindow(TimeNs open_ns, TimeNs span_ns);
+  static constexpr int kMotionSteps = 9;
+
   /// Memory held by textures.
   size_t textureBytes() const { return textures_.bytes(); }
 
@@ -100,6 +111,7 @@ class EmbreeScene {
  private:
   void addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object);
   void setUpShading(const Object& o, const Mesh& mesh, const Material& mat, ObjectShading& s);
+  void setObjectTransform(ObjectShading& s, const Mat4& T_world_object) const;
   RTCScene meshScene(int mesh_index, const Scene& scene);
   void buildLights(const Scene& scene);
 
@@ -110,6 +122,13 @@ class EmbreeScene {
   std::vector<ObjectShading> objects_;
   std::vector<std::unique_ptr<MeshAttributes>> attributes_;  ///< per mesh, or null
   TextureCache textures_;
+  struct MovingObject {
+    int object;
+    RTCGeometry instance;  ///< retained
+    Object motion;         ///< a copy: rest transform and keyframes
+  };
+  std::vector<MovingObject> moving_;
+  TimeNs window_open_ = -1, window_span_ = -1;  ///< the window set last
   std::unique_ptr<SceneLights> lights_;
   double build_ms_ = 0;
 };

@@ -123,6 +123,12 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
   // (ax*x + bx, ay*y + by, 1), computed incrementally. Other lenses ask generateRay.
   const bool simple = lens.type == LensType::Pinhole && !lens.hasDistortion();
   const bool moving = exposure != nullptr && exposure->moving();
+  // moving objects: each row's rays carry the time of that row's ground truth in the window
+  const bool timed = exposure != nullptr && exposure->span() > 0 && scene.hasMotion();
+  std::vector<float> row_time(timed ? K.height : 0, 0.f);
+  for (int y = 0; timed && y < K.height; ++y)
+    row_time[y] = static_cast<float>(groundTruthTime(exposure->shutter, 0, y, K.height)) /
+                  static_cast<float>(exposure->span());
   std::vector<Eigen::Matrix3f> row_R;  // per-row camera pose of a moving (rolling) exposure
   std::vector<Eigen::Vector3f> row_t;
   std::vector<Eigen::Matrix3f> row_Rt;  // their transposes (world to camera)
@@ -181,6 +187,7 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
               rh.ray.dir_y[k] = d.y();
               rh.ray.dir_z[k] = d.z();
               rh.ray.tnear[k] = 0.f;
+              rh.ray.time[k] = timed && inside ? row_time[y] : 0.f;
               rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
               rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
               rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;

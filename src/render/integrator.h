@@ -49,9 +49,12 @@ struct CameraExposure {
   /// Optional poses inside the window (time since the window opened, pose), sorted, e.g. the
   /// trajectory's own samples; `at` then interpolates piecewise through open, these, close.
   std::vector<std::pair<TimeNs, Pose>> knots;
+  /// Scene time (ns since the sequence's first frame) at which row 0 starts its exposure; moving
+  /// objects (Object::motion) are placed by it.
+  TimeNs scene_time_open_ns = 0;
 
-  static CameraExposure fixed(const Pose& T_world_camera) {
-    return {T_world_camera, T_world_camera, {}, {}};
+  static CameraExposure fixed(const Pose& T_world_camera, TimeNs scene_time_ns = 0) {
+    return {T_world_camera, T_world_camera, {}, {}, scene_time_ns};
   }
   TimeNs span() const { return shutter.readout_ns + shutter.exposure_ns; }
   bool moving() const {

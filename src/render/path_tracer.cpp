@@ -25,7 +25,8 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr int kTile = 16;
 
 struct Ray {
-  Vec3f o, d;  // d unit length
+  Vec3f o, d;        // d unit length
+  float time = 0.f;  // in the exposure window, [0, 1] (moving objects)
 };
 
 Vec3f cosineHemisphere(const Vec3f& n, float u1, float u2) {
@@ -51,7 +52,11 @@ class PathTracer final : public Integrator {
               ImageF* emission) const override {
     const CameraIntrinsics& K = ctx.lens.K;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
-    const bool moving = ctx.exposure != nullptr && ctx.exposure->moving();
+    // timed: the exposure has a duration and something moves (camera or objects); every sample
+    // then draws its time, which places the camera (moving) and the objects (ray time)
+    const bool timed = ctx.exposure != nullptr && ctx.exposure->span() > 0;
+    const bool moving = timed && ctx.exposure->moving();
+    const float inv_span = timed ? 1.f / static_cast<float>(ctx.exposure->span()) : 0.f;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
     const int spp = ctx.options.spp;
@@ -73,16 +78,20 @@ class PathTracer final : public Integrator {
               continue;  // no ray: black
             Eigen::Matrix3f Rs = R;
             Vec3f origin_s = origin;
-            if (moving) {  // motion blur: this sample's time inside its row's exposure
+            float time = 0.f;
+            if (timed) {  // motion blur: this sample's time inside its row's exposure
               TimeNs t = sampleTime(ctx.exposure->shutter, 0, y, K.height, smp.get1D());
-              Pose pose = ctx.exposure->at(t);
-              Rs = pose.rotation().cast<float>();
-              origin_s = pose.t.cast<float>();
+              time = std::min(static_cast<float>(t) * inv_span, 1.f);
+              if (moving) {
+                Pose pose = ctx.exposure->at(t);
+                Rs = pose.rotation().cast<float>();
+                origin_s = pose.t.cast<float>();
+              }
             }
             Vec3f o = Rs * cr.origin.cast<float>() + origin_s;
             Vec3f d = Rs * cr.dir.cast<float>();
             Vec3f le;
-            Vec3f v = radiance(ctx, Ray{o, d.normalized()}, pixel_spread, smp, le, tile_rays);
+            Vec3f v = radiance(ctx, Ray{o, d.normalized(), time}, pixel_spread, smp, le, tile_rays);
             sum += v;
             sum_le += le;
             Vec3f reflected = v - le;  // the variance guide describes what gets filtered
@@ -119,7 +128,7 @@ class PathTracer final : public Integrator {
     rh.ray.dir_z = ray.d.z();
     rh.ray.tnear = 0.f;  // origins are offset off the surface instead
     rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.time = 0.f;
+    rh.ray.time = ray.time;
     rh.ray.mask = 0xffffffffu;
     rh.ray.id = 0;
     rh.ray.flags = 0;
@@ -129,7 +138,8 @@ class PathTracer final : public Integrator {
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
 
-  static bool occluded(const EmbreeScene& scene, const Vec3f& o, const Vec3f& d, float tfar) {
+  static bool occluded(const EmbreeScene& scene, const Vec3f& o, const Vec3f& d, float tfar,
+                       float time) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;
@@ -141,7 +151,7 @@ class PathTracer final : public Integrator {
     ray.dir_z = d.z();
     ray.tnear = 0.f;
     ray.tfar = tfar;
-    ray.time = 0.f;
+    ray.time = time;
     ray.mask = 0xffffffffu;
     ray.id = 0;
     ray.flags = 0;
@@ -253,7 +263,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         float tmax = std::isinf(ls.dist) ? std::numeric_limits<float>::infinity()
                                          : (lambert ? ls.dist : ls.dist - eps) * (1.f - 1e-4f);
         ++rays;
-        if (!occluded(scene, o, ls.wi, tmax)) {
+        if (!occluded(scene, o, ls.wi, tmax, ray.time)) {
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
           L += throughput.cwiseProduct(f_cos.cwiseProduct(ls.radiance)) * (w / ls.pdf);
         }
@@ -285,7 +295,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (u_select_rr.y() >= q) break;
       throughput /= q;
     }
-    ray = Ray{offset(wi), wi};
+    ray = Ray{offset(wi), wi, ray.time};
   }
   return L;
 }

@@ -18,7 +18,11 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
                       const RenderOptions& options, uint32_t frame_index, Frame& frame) const {
   const CameraIntrinsics& K = lens.K;
   const Pose& T_world_camera = exposure.T_world_camera_open;
-  const CameraExposure* moving = exposure.moving() ? &exposure : nullptr;
+  // moving objects go where the window puts them; the exposure matters to the integrator and
+  // the ground truth when the window has a duration and the camera or an object moves
+  scene_->setWindow(exposure.scene_time_open_ns, exposure.span());
+  const CameraExposure* moving =
+      exposure.span() > 0 && (exposure.moving() || scene_->hasMotion()) ? &exposure : nullptr;
   const PassMask kAlbedo = static_cast<PassMask>(Pass::Albedo);
   const bool shading = has(options.passes, Pass::Shading);
   const bool rgb = has(options.passes, Pass::Rgb) || shading;  // shading is derived from rgb

@@ -402,7 +402,8 @@ int resolveId(const Reader& r, const std::map<std::string, int>& ids, const std:
 Object parseObject(const Reader& r, const json& j, const std::string& field,
                    const std::map<std::string, int>& mesh_ids,
                    const std::map<std::string, int>& material_ids) {
-  r.object(j, field, {"name", "mesh", "material", "instance", "transform"}, {"nyu40", "category"});
+  r.object(j, field, {"name", "mesh", "material", "instance", "transform"},
+           {"nyu40", "category", "motion"});
   Object o;
   o.name = r.string(j["name"], dot(field, "name"));
   o.mesh =
@@ -416,6 +417,28 @@ Object parseObject(const Reader& r, const json& j, const std::string& field,
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col)
       o.T_world_object(row, col) = r.number(t[row * 4 + col], at(tf, row * 4 + col));
+  if (j.contains("motion")) {
+    const std::string mf = dot(field, "motion");
+    const json& keys = r.array(j["motion"], mf);
+    if (keys.empty()) r.fail(mf, "needs at least one keyframe (or leave \"motion\" out)");
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const std::string kf = at(mf, k);
+      r.object(keys[k], kf, {"t", "translation", "rotation"}, {});
+      ObjectKeyframe key;
+      key.t_s = r.number(keys[k]["t"], dot(kf, "t"));
+      if (k > 0 && !(key.t_s > o.motion.back().t_s))
+        r.fail(dot(kf, "t"), "keyframe times must increase strictly");
+      key.pose.t = r.vec3(keys[k]["translation"], dot(kf, "translation"));
+      const std::string rf = dot(kf, "rotation");
+      const json& q = r.fixedArray(keys[k]["rotation"], rf, 4);
+      const Quat quat(r.number(q[0], at(rf, 0)), r.number(q[1], at(rf, 1)),
+                      r.number(q[2], at(rf, 2)), r.number(q[3], at(rf, 3)));
+      if (std::abs(quat.norm() - 1.0) > 1e-6)
+        r.fail(rf, fmt::format("a unit quaternion [w, x, y, z] is needed (norm {})", quat.norm()));
+      key.pose.q = quat;
+      o.motion.push_back(key);
+    }
+  }
   return o;
 }
 

@@ -147,6 +147,18 @@ ojson objectToJson(const Scene& scene, const Object& o) {
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) t.push_back(jsonNumber(o.T_world_object(row, col)));
   j["transform"] = std::move(t);
+  if (o.moving()) {
+    ojson keys = ojson::array();
+    for (const ObjectKeyframe& k : o.motion) {
+      ojson key;
+      key["t"] = jsonNumber(k.t_s);
+      key["translation"] = jsonArray(k.pose.t);
+      key["rotation"] = {jsonNumber(k.pose.q.w()), jsonNumber(k.pose.q.x()),
+                         jsonNumber(k.pose.q.y()), jsonNumber(k.pose.q.z())};
+      keys.push_back(std::move(key));
+    }
+    j["motion"] = std::move(keys);
+  }
   return j;
 }
 

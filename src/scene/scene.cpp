@@ -93,6 +93,25 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
+Mat4 Object::transformAt(double t_s) const {
+  if (motion.empty()) return T_world_object;
+  Pose p;
+  if (t_s <= motion.front().t_s) {
+    p = motion.front().pose;
+  } else if (t_s >= motion.back().t_s) {
+    p = motion.back().pose;
+  } else {
+    auto hi = std::upper_bound(motion.begin(), motion.end(), t_s,
+                               [](double t, const ObjectKeyframe& k) { return t < k.t_s; });
+    const ObjectKeyframe& a = *(hi - 1);
+    const ObjectKeyframe& b = *hi;
+    const double alpha = (t_s - a.t_s) / (b.t_s - a.t_s);
+    p.q = a.pose.q.slerp(alpha, b.pose.q);
+    p.t = (1.0 - alpha) * a.pose.t + alpha * b.pose.t;
+  }
+  return p.matrix() * T_world_object;
+}
+
 void Scene::validate(const std::string& where) const {
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];
@@ -141,6 +160,18 @@ void Scene::validate(const std::string& where) const {
       throw InputError(
           where, field + ".transform",
           "linear part must have a positive determinant (no zero, negative or mirror scale)");
+    for (size_t k = 0; k < o.motion.size(); ++k) {
+      const ObjectKeyframe& kf = o.motion[k];
+      const std::string f = fmt::format("{}.motion[{}]", field, k);
+      if (!std::isfinite(kf.t_s) || (k > 0 && !(kf.t_s > o.motion[k - 1].t_s)))
+        throw InputError(where, f + ".t", "times must be finite and strictly increasing");
+      if (!kf.pose.t.allFinite() || !kf.pose.q.coeffs().allFinite() ||
+          std::abs(kf.pose.q.norm() - 1.0) > 1e-6)
+        throw InputError(where, f, "needs a finite translation and a unit quaternion");
+    }
+    if (o.moving() && materials[o.material].isEmissive())
+      throw InputError(where, field + ".motion",
+                       "an emissive object cannot move (area lights are sampled where they rest)");
   }
   for (size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];

@@ -88,6 +88,15 @@ const char* materialTypeName(MaterialType t);
 /// Conductor presets the renderer knows: gold, silver, copper, aluminium, chromium.
 const std::vector<std::string>& metalNames();
 
+/// One keyframe of an object's rigid motion: at scene time `t_s` (seconds since the sequence's
+/// first frame) the object sits at `pose * T_world_object`, i.e. `pose` moves its rest placement
+/// rigidly in the world. Between keyframes the pose is interpolated (linear translation, slerp
+/// rotation); before the first and after the last it holds.
+struct ObjectKeyframe {
+  double t_s = 0.0;
+  Pose pose;
+};
+
 struct Object {
   std::string name;
   int mesh = -1;      ///< index into Scene::meshes
@@ -95,6 +104,11 @@ struct Object {
   Mat4 T_world_object = Mat4::Identity();
   int nyu40 = 0;     ///< NYU40 class id, 0 = void / unlabelled, 1..40
   int instance = 0;  ///< instance id (1..65535), shared by the parts of one object
+  std::vector<ObjectKeyframe> motion;  ///< empty: static; else sorted by strictly rising t_s
+
+  bool moving() const { return !motion.empty(); }
+  /// Object-to-world transform at scene time t_s (T_world_object when static).
+  Mat4 transformAt(double t_s) const;
 };
 
 /// Analytic lights (area lights are emissive materials on geometry).

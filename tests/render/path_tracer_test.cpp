@@ -101,7 +101,7 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
   s.materials = {floor_m, light_m};
   Mat4 floor_T = Mat4::Identity();
   floor_T.diagonal() << 100, 100, 1, 1;
-  Object fl{"floor", 0, 0, floor_T, 2, 1};
+  Object fl{"floor", 0, 0, floor_T, 2, 1, {}};
   const double h = 2.0, w = 0.2;  // square light of side w at height h, facing down
   Object li{"light",
             0,
@@ -110,7 +110,8 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
              Eigen::Scaling(Vec3(w, w, 1)))
                 .matrix(),
             35,
-            2};
+            2,
+            {}};
   s.objects = {fl, li};
   Renderer r(s);
   // tiny field of view: every pixel sees the floor right under the light
@@ -152,7 +153,7 @@ Scene glassInFurnace(MaterialType glass_type, float roughness) {
   glass.ior = 1.5f;
   s.materials.push_back(glass);
   Object o{"ball", 1, 1, (Eigen::Translation3d(1.0, 0.5, 1.0) * Eigen::Scaling(0.4)).matrix(),
-           40,     2};
+           40,     2, {}};
   s.objects.push_back(o);
   return s;
 }

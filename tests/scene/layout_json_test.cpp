@@ -247,7 +247,7 @@ TEST(LayoutJson, WriterRefusesScenesItCannotReload) {
   s.meshes.push_back(makePrimitive("box", {}, "t", "m"));
   s.meshes.push_back(makePrimitive("box", {}, "t", "m"));
   s.meshes[0].id = s.meshes[1].id = "box";
-  s.materials.push_back(Material{"w"});
+  s.materials.emplace_back().id = "w";
   try {
     (void)layoutToJson(s);
     FAIL() << "expected InputError";
@@ -469,6 +469,25 @@ std::vector<BadLayout> objectCases() {
        "expected true or false"},
       {"objects_not_array", edited([](json& j) { j["objects"] = json::object(); }), "objects",
        "expected an array"},
+      {"motion_times_fall", edited([](json& j) {
+         j["objects"][0]["motion"] = json::parse(
+             R"([{"t": 1, "translation": [0, 0, 0], "rotation": [1, 0, 0, 0]},
+                 {"t": 0.5, "translation": [1, 0, 0], "rotation": [1, 0, 0, 0]}])");
+       }),
+       "objects[0].motion[1].t", "increase strictly"},
+      {"motion_quaternion_not_unit", edited([](json& j) {
+         j["objects"][0]["motion"] =
+             json::parse(R"([{"t": 0, "translation": [0, 0, 0], "rotation": [1, 1, 0, 0]}])");
+       }),
+       "objects[0].motion[0].rotation", "unit quaternion"},
+      {"motion_empty", edited([](json& j) { j["objects"][0]["motion"] = json::array(); }),
+       "objects[0].motion", "at least one keyframe"},
+      {"moving_light", edited([](json& j) {
+         j["materials"][0]["emission"] = {1, 1, 1};
+         j["objects"][0]["motion"] =
+             json::parse(R"([{"t": 0, "translation": [0, 0, 1], "rotation": [1, 0, 0, 0]}])");
+       }),
+       "objects[0] ('crate').motion", "emissive object cannot move"},
       {"missing_texture", edited([](json& j) { j["materials"][0]["albedo_texture"] = "no.png"; }),
        "materials[0].albedo_texture", "no.png': file not found"},
       {"texture_is_a_folder", edited([](json& j) { j["materials"][0]["normal_texture"] = "."; }),
@@ -525,6 +544,25 @@ TEST(LayoutJson, MalformedLayoutsNameFileAndField) {
       EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
     }
   }
+}
+
+TEST(LayoutJson, MotionRoundTripsAndInterpolates) {
+  json j = baseLayout();
+  j["objects"][0]["motion"] = json::parse(R"([
+      {"t": 0.5, "translation": [0, 0, 0], "rotation": [1, 0, 0, 0]},
+      {"t": 2.5, "translation": [2, 0, 0.25], "rotation": [0.7071067811865476, 0, 0, 0.7071067811865476]}])");
+  Scene s = parseLayout(j.dump(), "moving.json");
+  const Object& o = s.objects[0];
+  ASSERT_EQ(o.motion.size(), 2u);
+  const std::string text = layoutToJson(s);
+  EXPECT_EQ(layoutToJson(parseLayout(text, "again.json")), text);
+  // before the first keyframe: held; halfway: half the translation and a 45 degree turn
+  EXPECT_TRUE(o.transformAt(-1.0).isApprox(o.T_world_object));
+  const Mat4 mid = o.transformAt(1.5);
+  EXPECT_TRUE((mid.block<3, 1>(0, 3).isApprox(Vec3(1, 0, 0.125))));
+  const Mat3 R = Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()).toRotationMatrix();
+  EXPECT_TRUE((mid.block<3, 3>(0, 0).isApprox(R * o.T_world_object.block<3, 3>(0, 0), 1e-9)));
+  EXPECT_TRUE((o.transformAt(9.0).block<3, 1>(0, 3).isApprox(Vec3(2, 0, 0.25))));
 }
 
 TEST(LayoutJson, MissingLayoutFile) {
