@@ -6,7 +6,7 @@
 //
 // Samples: a padded, Owen-scrambled Sobol sampler per (seed, frame, pixel, sample) (sampler.h),
 // so the image does not depend on the number of threads or the order of tiles.
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -51,6 +51,41 @@ class PathTracer final : public Integrator {
   void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance,
               ImageF* emission) const override {
     const CameraIntrinsics& K = ctx.lens.K;
+    const int spp = ctx.options.spp;
+    // angle one pixel subtends (fx, fy are pixels per radian for every lens model)
+    const auto pixel_spread = static_cast<float>(1.0 / std::sqrt(K.fx * K.fy));
+    // Camera rays go out in coherent 16-wide packets: for each sample index, the rays of a 4x4
+    // pixel block are intersected together (rtcIntersect16), then each path continues alone.
+    // Every pixel still sums its samples in sample order, so the image does not depend on
+    // threads or tiles.
+    const int tiles_x = (K.width + kTile - 1) / kTile, tiles_y = (K.height + kTile - 1) / kTile;
+    auto tile = [&](const tbb::blocked_range<int>& range) {
+      uint64_t tile_rays = 0;
+      RTCIntersectContext ictx;
+      rtcInitIntersectContext(&ictx);
+      ictx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (int t = range.begin(); t < range.end(); ++t) {
+        const int x_begin = (t % tiles_x) * kTile, y_begin = (t / tiles_x) * kTile;
+        const int x_end = std::min(x_begin + kTile, K.width);
+        const int y_end = std::min(y_begin + kTile, K.height);
+        for (int by = y_begin; by < y_end; by += 4)
+          for (int bx = x_begin; bx < x_end; bx += 4)
+            renderBlock(ctx, bx, by, std::min(bx + 4, x_end), std::min(by + 4, y_end), ictx,
+                        pixel_spread, rgb, variance, emission, tile_rays);
+      }
+      if (ctx.stats) ctx.stats->rays += tile_rays;
+    };
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), tile);
+    if (ctx.stats) ctx.stats->samples += static_cast<uint64_t>(K.width) * K.height * spp;
+  }
+
+ private:
+  /// Renders pixels [x0, x1) x [y0, y1) (at most 4 x 4) with packets of camera rays.
+  void renderBlock(const RenderContext& ctx, int x0, int y0, int x1, int y1,
+                   RTCIntersectContext& ictx, float pixel_spread, ImageF& rgb, ImageF* variance,
+                   ImageF* emission, uint64_t& rays) const {
+    const CameraIntrinsics& K = ctx.lens.K;
+    const int spp = ctx.options.spp;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     // timed: the exposure has a duration and something moves (camera or objects); every sample
     // then draws its time, which places the camera (moving) and the objects (ray time)
@@ -59,64 +94,108 @@ class PathTracer final : public Integrator {
     const float inv_span = timed ? 1.f / static_cast<float>(ctx.exposure->span()) : 0.f;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
-    const int spp = ctx.options.spp;
-    // angle one pixel subtends (fx, fy are pixels per radian for every lens model)
-    const auto pixel_spread = static_cast<float>(1.0 / std::sqrt(K.fx * K.fy));
-    auto tile = [&](const tbb::blocked_range2d<int>& r) {
-      uint64_t tile_rays = 0;
-      for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
-        for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-          auto pixel = static_cast<uint32_t>(y * K.width + x);
-          Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
-          for (int s = 0; s < spp; ++s) {
-            PixelSampler smp(ctx.options.seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
-                             static_cast<uint32_t>(spp));
-            Eigen::Vector2f j = smp.get2D();
-            Eigen::Vector2d lens_uv = thin_lens ? smp.get2D().cast<double>() : kLensCentre;
-            CameraRay cr;
-            if (!generateRay(ctx.lens, x + j.x(), y + j.y(), lens_uv, cr))
-              continue;  // no ray: black
-            Eigen::Matrix3f Rs = R;
-            Vec3f origin_s = origin;
-            float time = 0.f;
-            if (timed) {  // motion blur: this sample's time inside its row's exposure
-              TimeNs t = sampleTime(ctx.exposure->shutter, 0, y, K.height, smp.get1D());
-              time = std::min(static_cast<float>(t) * inv_span, 1.f);
-              if (moving) {
-                Pose pose = ctx.exposure->at(t);
-                Rs = pose.rotation().cast<float>();
-                origin_s = pose.t.cast<float>();
-              }
-            }
-            Vec3f o = Rs * cr.origin.cast<float>() + origin_s;
-            Vec3f d = Rs * cr.dir.cast<float>();
-            Vec3f le;
-            Vec3f v = radiance(ctx, Ray{o, d.normalized(), time}, pixel_spread, smp, le, tile_rays);
-            sum += v;
-            sum_le += le;
-            Vec3f reflected = v - le;  // the variance guide describes what gets filtered
-            sum2 += reflected.cwiseProduct(reflected);
-          }
-          const float n = static_cast<float>(spp);
-          for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = sum[c] / n;
-          if (emission)
-            for (int c = 0; c < 3; ++c) emission->at(x, y, c) = sum_le[c] / n;
-          if (variance) {  // unbiased sample variance of the reflected part, divided by n
-            for (int c = 0; c < 3; ++c) {
-              float r = sum[c] - sum_le[c];
-              variance->at(x, y, c) =
-                  spp > 1 ? std::max(0.f, (sum2[c] - r * r / n) / (n - 1.f)) / n : 0.f;
-            }
+    struct Lane {
+      int x = 0, y = 0;
+      uint32_t pixel = 0;
+      bool inside = false;
+      Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
+      uint32_t hashes[PixelSampler::kMaxPairs];
+    };
+    Lane lanes[16];
+    for (int k = 0; k < 16; ++k) {
+      Lane& l = lanes[k];
+      l.x = x0 + (k & 3);
+      l.y = y0 + (k >> 2);
+      l.inside = l.x < x1 && l.y < y1;
+      if (!l.inside) continue;
+      l.pixel = static_cast<uint32_t>(l.y * K.width + l.x);
+      PixelSampler::pairHashes(ctx.options.seed, ctx.frame_index, l.pixel, l.hashes);
+    }
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    std::optional<PixelSampler> smp[16];
+    Ray ray[16];
+    for (int s = 0; s < spp; ++s) {
+      for (int k = 0; k < 16; ++k) {
+        valid[k] = 0;
+        Lane& l = lanes[k];
+        if (!l.inside) continue;
+        smp[k].emplace(ctx.options.seed, ctx.frame_index, l.pixel, static_cast<uint32_t>(s),
+                       static_cast<uint32_t>(spp), l.hashes);
+        Eigen::Vector2f j = smp[k]->get2D();
+        Eigen::Vector2d lens_uv = thin_lens ? smp[k]->get2D().cast<double>() : kLensCentre;
+        CameraRay cr;
+        if (!generateRay(ctx.lens, l.x + j.x(), l.y + j.y(), lens_uv, cr))
+          continue;  // no ray: black
+        Eigen::Matrix3f Rs = R;
+        Vec3f origin_s = origin;
+        float time = 0.f;
+        if (timed) {  // motion blur: this sample's time inside its row's exposure
+          TimeNs t = sampleTime(ctx.exposure->shutter, 0, l.y, K.height, smp[k]->get1D());
+          time = std::min(static_cast<float>(t) * inv_span, 1.f);
+          if (moving) {
+            Pose pose = ctx.exposure->at(t);
+            Rs = pose.rotation().cast<float>();
+            origin_s = pose.t.cast<float>();
           }
         }
+        ray[k] = Ray{Rs * cr.origin.cast<float>() + origin_s,
+                     (Rs * cr.dir.cast<float>()).normalized(), time};
+        valid[k] = -1;
+        rh.ray.org_x[k] = ray[k].o.x();
+        rh.ray.org_y[k] = ray[k].o.y();
+        rh.ray.org_z[k] = ray[k].o.z();
+        rh.ray.dir_x[k] = ray[k].d.x();
+        rh.ray.dir_y[k] = ray[k].d.y();
+        rh.ray.dir_z[k] = ray[k].d.z();
+        rh.ray.tnear[k] = 0.f;
+        rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        rh.ray.time[k] = time;
+        rh.ray.mask[k] = 0xffffffffu;
+        rh.ray.id[k] = static_cast<unsigned>(k);
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        ++rays;
       }
-      if (ctx.stats) ctx.stats->rays += tile_rays;
-    };
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, K.height, kTile, 0, K.width, kTile), tile);
-    if (ctx.stats) ctx.stats->samples += static_cast<uint64_t>(K.width) * K.height * spp;
+      rtcIntersect16(valid, ctx.scene.handle(), &ictx, &rh);
+      for (int k = 0; k < 16; ++k) {
+        if (!valid[k]) continue;
+        RTCRayHit first;
+        first.ray.tfar = rh.ray.tfar[k];
+        first.hit.Ng_x = rh.hit.Ng_x[k];
+        first.hit.Ng_y = rh.hit.Ng_y[k];
+        first.hit.Ng_z = rh.hit.Ng_z[k];
+        first.hit.u = rh.hit.u[k];
+        first.hit.v = rh.hit.v[k];
+        first.hit.primID = rh.hit.primID[k];
+        first.hit.geomID = rh.hit.geomID[k];
+        first.hit.instID[0] = rh.hit.instID[0][k];
+        Vec3f le;
+        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, rays, &first);
+        Lane& l = lanes[k];
+        l.sum += v;
+        l.sum_le += le;
+        Vec3f reflected = v - le;  // the variance guide describes what gets filtered
+        l.sum2 += reflected.cwiseProduct(reflected);
+      }
+    }
+    const float n = static_cast<float>(spp);
+    for (const Lane& l : lanes) {
+      if (!l.inside) continue;
+      for (int c = 0; c < 3; ++c) rgb.at(l.x, l.y, c) = l.sum[c] / n;
+      if (emission)
+        for (int c = 0; c < 3; ++c) emission->at(l.x, l.y, c) = l.sum_le[c] / n;
+      if (variance) {  // unbiased sample variance of the reflected part, divided by n
+        for (int c = 0; c < 3; ++c) {
+          float r = l.sum[c] - l.sum_le[c];
+          variance->at(l.x, l.y, c) =
+              spp > 1 ? std::max(0.f, (l.sum2[c] - r * r / n) / (n - 1.f)) / n : 0.f;
+        }
+      }
+    }
   }
 
- private:
   static bool intersect(const EmbreeScene& scene, const Ray& ray, RTCRayHit& rh) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -162,13 +241,14 @@ class PathTracer final : public Integrator {
   /// Radiance along a camera ray; `seen_emission` receives the part emitted by the first surface
   /// hit (directly visible lights), which the denoiser must leave alone.
   /// `rays` counts the rays traced.
-  /// `pixel_spread` is the angle of one pixel (radians), for texture footprints.
+  /// `pixel_spread` is the angle of one pixel (radians), for texture footprints. `first`, when
+  /// given, is the camera ray's hit, already traced (in a packet) and counted.
   Vec3f radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                 Vec3f& seen_emission, uint64_t& rays) const;
+                 Vec3f& seen_emission, uint64_t& rays, const RTCRayHit* first = nullptr) const;
 };
 
 Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                           Vec3f& seen_emission, uint64_t& rays) const {
+                           Vec3f& seen_emission, uint64_t& rays, const RTCRayHit* first) const {
   seen_emission = Vec3f::Zero();
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
@@ -178,8 +258,15 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   for (int bounce = 0;; ++bounce) {
     const bool from_camera = bounce == 0;
     RTCRayHit rh;
-    ++rays;
-    if (!intersect(scene, ray, rh)) {
+    bool hit;
+    if (from_camera && first) {
+      rh = *first;
+      hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      ++rays;
+      hit = intersect(scene, ray, rh);
+    }
+    if (!hit) {
       float sun_pdf;
       Vec3f sun = scene.lights().environmentRadiance(ray.d, sun_pdf);
       if (sun_pdf > 0.f) {

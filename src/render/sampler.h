@@ -95,20 +95,26 @@ class PixelSampler {
 
   /// spp: samples per pixel of the image (sample_index < spp); sets the size of the power-of-two
   /// block within which sample indices are shuffled.
-  PixelSampler(uint64_t seed, uint32_t frame, uint32_t pixel, uint32_t sample_index, uint32_t spp)
+  /// `pair_hashes`, when given, holds pairHashes(seed, frame, pixel) (kMaxPairs values, alive as
+  /// long as the sampler): they depend on the pixel only, so a renderer computes them once per
+  /// pixel instead of once per sample and pair. The samples are the same either way.
+  PixelSampler(uint64_t seed, uint32_t frame, uint32_t pixel, uint32_t sample_index, uint32_t spp,
+               const uint32_t* pair_hashes = nullptr)
       : seed_(seed),
         frame_(frame),
         pixel_(pixel),
         index_(sample_index),
         index_mask_(blockMask(spp)),
         index_reversed_(sobol_detail::reverseBits(sample_index)),
+        pair_hashes_(pair_hashes),
         rng_(seed, RngStream::PathTracer, frame, pixel, sample_index) {}
 
   /// The next 2D sample in [0,1)^2.
   Eigen::Vector2f get2D() {
     if (pair_ >= kMaxPairs) return {rng_.uniform(), rng_.uniform()};
     using namespace sobol_detail;
-    uint32_t h = hash4(seed_, frame_, pixel_, pair_++);
+    uint32_t h = pair_hashes_ ? pair_hashes_[pair_] : hash4(seed_, frame_, pixel_, pair_);
+    ++pair_;
     // Shuffle the sample index within its power-of-two block. Owen scrambling maps a block with
     // fixed high bits onto a block with fixed high bits, so only the low bits matter; dropping
     // the constant high part is a digital shift of the net, absorbed by the scrambles below.
@@ -123,6 +129,11 @@ class PixelSampler {
   /// The next 1D sample in [0, 1) (stratified: the first coordinate of a fresh pair).
   float get1D() { return get2D().x(); }
 
+  /// The scramble seed of every pair of one pixel, for the constructor's `pair_hashes`.
+  static void pairHashes(uint64_t seed, uint32_t frame, uint32_t pixel, uint32_t* out) {
+    for (uint32_t p = 0; p < kMaxPairs; ++p) out[p] = sobol_detail::hash4(seed, frame, pixel, p);
+  }
+
  private:
   static uint32_t blockMask(uint32_t spp) {
     uint32_t m = 0;
@@ -133,6 +144,7 @@ class PixelSampler {
 
   uint64_t seed_;
   uint32_t frame_, pixel_, index_, index_mask_, index_reversed_;
+  const uint32_t* pair_hashes_;
   uint32_t pair_ = 0;
   CounterRng rng_;
 };

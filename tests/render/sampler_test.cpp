@@ -87,3 +87,23 @@ TEST(PixelSampler, InUnitSquareAndReproducible) {
 
 }  // namespace
 }  // namespace inet
+
+namespace inet {
+namespace {
+
+TEST(PixelSampler, PrecomputedPairHashesGiveTheSameSamples) {
+  for (uint32_t pixel : {0u, 7u, 307199u}) {
+    uint32_t hashes[PixelSampler::kMaxPairs];
+    PixelSampler::pairHashes(5, 3, pixel, hashes);
+    for (uint32_t s = 0; s < 8; ++s) {
+      PixelSampler a(5, 3, pixel, s, 8), b(5, 3, pixel, s, 8, hashes);
+      for (uint32_t d = 0; d < PixelSampler::kMaxPairs + 3; ++d) {  // past kMaxPairs: the RNG
+        const Eigen::Vector2f pa = a.get2D(), pb = b.get2D();
+        ASSERT_EQ(pa, pb) << "pixel " << pixel << " sample " << s << " pair " << d;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace inet
