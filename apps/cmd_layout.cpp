@@ -1,10 +1,15 @@
 // interiornet layout show: what a layout or mesh scene contains, as the renderer will see it.
+// interiornet layout import: a mesh scene (OBJ, glTF, ...) written as a layout.json, to add
+// lights, materials or motion to by hand.
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
 
 #include "common.h"
+#include "core/error.h"
+#include "scene/layout_json.h"
 #include "scene/nyu40.h"
 
 namespace inet::app {
@@ -33,17 +38,48 @@ void showScene(const Scene& s) {
     fmt::print("  {:>2} {:<16} {}\n", label, nyu40Name(label), count);
 }
 
+/// Writes `s` to `out` with texture paths relative to the output's folder (so the layout keeps
+/// working where it is written).
+void importScene(Scene s, const std::string& out) {
+  namespace fs = std::filesystem;
+  if (out.empty()) throw InputError("", "--out", "an output layout.json path is needed");
+  const fs::path dir = fs::absolute(fs::path(out)).parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw InputError(out, "--out", "the folder does not exist: " + dir.string());
+  for (Material& m : s.materials)
+    for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture})
+      if (!t->empty()) t->file = fs::proximate(fs::absolute(t->path), dir).generic_string();
+  saveLayout(s, out);
+  fmt::print("wrote {} ({} objects, {} materials, {} meshes inline)\n", out, s.objects.size(),
+             s.materials.size(), s.meshes.size());
+}
+
 }  // namespace
 
 void registerLayout(CLI::App& app) {
   auto* layout = app.add_subcommand(
-      "layout", "Inspect layouts (generate, import and stats come with the layout stage)");
+      "layout", "Inspect and import layouts (generate and stats come with the layout stage)");
   layout->require_subcommand(1);
   auto* show = layout->add_subcommand(
       "show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
   auto args = std::make_shared<SceneArgs>();
   args->addTo(*show);
   show->callback([args] { showScene(args->load()); });
-}
+
+  auto* import = layout->add_subcommand(
+      "import",
+      "Write a mesh scene (OBJ, glTF, ...) as a layout.json with inline meshes, its materials, "
+      "textures (paths relative to the output) and NYU40 labels, ready for lights and motion");
+  auto import_args = std::make_shared<SceneArgs>();
+  import_args->addTo(*import);
+  auto out = std::make_shared<std::string>();
+  import->add_option("--out", *out, "layout.json to write (atomically)")->required();
+  import->callback([import_args, out] {
+    if (import_args->isDefault())
+      throw InputError("", "--scene", "name the mesh file to import");
+  importScene(import_args->load(), *out);
+});
+}  // namespace inet::app
 
 }  // namespace inet::app
