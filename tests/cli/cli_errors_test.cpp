@@ -186,3 +186,29 @@ TEST(Cli, HelpExplainsEverySubcommand) {
 
 }  // namespace
 }  // namespace inet::test
+
+namespace inet::test {
+namespace {
+
+TEST(Cli, LayoutImportWritesALoadableLayout) {
+  TempDir dir("layout_import");
+  const std::string obj = std::string(INET_SOURCE_DIR) + "/tests/data/scene/two_parts.obj";
+  const std::string out = (dir / "imported.json").string();
+  RunResult r = runInterinet("layout import --scene " + obj + " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  RunResult show = runInterinet("layout show --scene " + out);
+  ASSERT_EQ(show.exit_code, 0) << show.err;
+  RunResult orig = runInterinet("layout show --scene " + obj);
+  // the same objects, classes and bounds whether read from the OBJ or from the written layout
+  auto tail = [](const std::string& s) { return s.substr(s.find("meshes")); };
+  EXPECT_EQ(tail(show.out), tail(orig.out));
+  // no --out, or an --out in a missing folder: a one-line error, nothing written
+  RunResult bad = runInterinet("layout import --scene " + obj + " --out " +
+                               (dir / "no" / "such" / "x.json").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--out"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "no"));
+}
+
+}  // namespace
+}  // namespace inet::test
