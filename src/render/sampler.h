@@ -22,11 +22,10 @@ namespace inet {
 namespace sobol_detail {
 
 inline uint32_t reverseBits(uint32_t x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = __builtin_bswap32(x);  // bytes in reverse order, then the bits inside each byte
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  return ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
 }
 
 /// Laine-Karras style permutation: each output bit depends only on the same and lower input bits.
@@ -59,20 +58,35 @@ inline uint32_t sobol1Slow(uint32_t i) {
 
 /// The same, by table: the generator is linear over GF(2), so the index is taken a byte at a time.
 /// With `reversed`, the result comes bit-reversed (bit reversal is linear too), which is the form
-/// Owen scrambling works on.
-inline uint32_t sobol1(uint32_t i, bool reversed = false) {
-  struct Tables {
-    uint32_t t[2][4][256];
-    Tables() {
-      for (int b = 0; b < 4; ++b)
-        for (uint32_t v = 0; v < 256; ++v) {
-          t[0][b][v] = sobol1Slow(v << (8 * b));
-          t[1][b][v] = reverseBits(t[0][b][v]);
-        }
+/// Owen scrambling works on. The table is built at compile time (no run-time initialisation
+/// guard on this hot path).
+struct Sobol1Tables {
+  uint32_t t[2][4][256];
+};
+constexpr uint32_t sobol1Constexpr(uint32_t i) {
+  uint32_t r = 0;
+  for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
+    if (i & 1u) r ^= v;
+  return r;
+}
+constexpr uint32_t reverseBitsConstexpr(uint32_t x) {
+  uint32_t r = 0;
+  for (int b = 0; b < 32; ++b) r |= ((x >> b) & 1u) << (31 - b);
+  return r;
+}
+constexpr Sobol1Tables makeSobol1Tables() {
+  Sobol1Tables tables{};
+  for (int b = 0; b < 4; ++b)
+    for (uint32_t v = 0; v < 256; ++v) {
+      tables.t[0][b][v] = sobol1Constexpr(v << (8 * b));
+      tables.t[1][b][v] = reverseBitsConstexpr(tables.t[0][b][v]);
     }
-  };
-  static const Tables tables;
-  const auto& t = tables.t[reversed ? 1 : 0];
+  return tables;
+}
+inline constexpr Sobol1Tables kSobol1Tables = makeSobol1Tables();
+
+inline uint32_t sobol1(uint32_t i, bool reversed = false) {
+  const auto& t = kSobol1Tables.t[reversed ? 1 : 0];
   return t[0][i & 0xff] ^ t[1][(i >> 8) & 0xff] ^ t[2][(i >> 16) & 0xff] ^ t[3][i >> 24];
 }
 
