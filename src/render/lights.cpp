@@ -44,6 +44,12 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
       a.cos_outer = std::cos(l.cone_deg * kPi / 180.f);
       a.cos_inner = std::cos((l.cone_deg - l.falloff_deg) * kPi / 180.f);
       p *= 2.0 * M_PI * (1.0 - 0.5 * (a.cos_outer + a.cos_inner));
+    } else if (l.type == LightType::Sky && l.sky_model == SkyModel::Preetham) {
+      // as for the uniform sky: the light entering the scene's bounding sphere, pi r^2 per
+      // steradian of sky, so pi r^2 x the integral of the sky's luminance
+      a.sky = static_cast<int>(skies_.size());
+      skies_.emplace_back(l);
+      p = M_PI * scene_radius * scene_radius * skies_.back().luminanceIntegral();
     } else if (l.type == LightType::Sky) {
       // radiance L from the whole sphere: power ~ pi L x the area of the scene's bounding sphere
       p *= 4.0 * M_PI * M_PI * scene_radius * scene_radius;
@@ -107,6 +113,12 @@ bool SceneLights::sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u,
 
 bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                                  LightSample& out) const {
+  if (a.sky >= 0) {
+    if (!skies_[a.sky].sample(u, out.wi, out.radiance, out.pdf)) return false;
+    out.dist = std::numeric_limits<float>::infinity();
+    out.delta = false;
+    return true;
+  }
   if (a.type == LightType::Sky) {
     // uniform direction on the sphere
     float z = 1.f - 2.f * u.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
@@ -160,6 +172,12 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
   pdf = 0.f;
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
+    if (a.sky >= 0) {
+      const PreethamSkyLight& sky = skies_[a.sky];
+      L += sky.radiance(d);
+      pdf += pmf_[triangles_.size() + k] * sky.pdf(d);
+      continue;
+    }
     if (a.type == LightType::Sky) {
       L += a.rgb;
       pdf += pmf_[triangles_.size() + k] / (4.f * kPi);

@@ -1,7 +1,9 @@
 #pragma once
 // Light sampling for next-event estimation: every light of the scene in one list (emissive
-// triangles, point, spot and sun lights), picked with probability proportional to an estimate of
-// its power, so that 50+ lights cost one sample each, not one shadow ray per light.
+// triangles, point, spot, sun and sky lights), picked with probability proportional to an
+// estimate of its power, so that 50+ lights cost one sample each, not one shadow ray per light.
+// A uniform sky is sampled uniformly on the sphere; a Preetham sky from a table of its luminance
+// over the upper hemisphere (sky.h), with the same pdf for escaped rays (environmentRadiance).
 //
 // Conventions: `sample` returns the radiance arriving at p from the chosen point and the pdf of
 // choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
@@ -9,6 +11,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "render/sky.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -58,13 +61,15 @@ class SceneLights {
     // two significant digits: a 0.3% error in the disk's solid angle and so in its light)
     float one_minus_cos_max = 0.f;
     float max_distance = 0.f;
+    int sky = -1;  // Preetham sky: index into skies_ (-1: a uniform sky of radiance rgb)
   };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                       LightSample& out) const;
   float pick(float u, size_t& index) const;
 
   std::vector<EmissiveTriangle> triangles_;
-  std::vector<Analytic> analytic_;   // index in the CDF: triangleCount() + i
+  std::vector<Analytic> analytic_;  // index in the CDF: triangleCount() + i
+  std::vector<PreethamSkyLight> skies_;
   std::vector<size_t> environment_;  // indices into analytic_ of suns and skies (escaped rays)
   std::vector<float> cdf_, pmf_;
 };

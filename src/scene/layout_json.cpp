@@ -442,9 +442,19 @@ Object parseObject(const Reader& r, const json& j, const std::string& field,
   return o;
 }
 
+/// A sky's "model" ("uniform" when absent).
+SkyModel parseSkyModel(const Reader& r, const json& j, const std::string& field) {
+  if (!j.contains("model")) return SkyModel::Uniform;
+  const std::string model = r.string(j["model"], dot(field, "model"));
+  for (SkyModel m : {SkyModel::Uniform, SkyModel::Preetham})
+    if (model == skyModelName(m)) return m;
+  r.fail(dot(field, "model"), "unknown sky model '" + model + "' (valid: uniform, preetham)");
+}
+
 Light parseLight(const Reader& r, const json& j, const std::string& field) {
   if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
-  if (!j.contains("type")) r.fail(dot(field, "type"), "missing required key (point, spot or sun)");
+  if (!j.contains("type"))
+    r.fail(dot(field, "type"), "missing required key (point, spot, sun or sky)");
   const std::string type = r.string(j["type"], dot(field, "type"));
   Light l;
   const Keys common = {"color", "temperature_k", "on"};
@@ -464,7 +474,12 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
     r.object(j, field, {"name", "type", "direction", "intensity"}, keys({"angular_diameter_deg"}));
   } else if (type == "sky") {
     l.type = LightType::Sky;
-    r.object(j, field, {"name", "type", "intensity"}, keys({}));
+    l.sky_model = parseSkyModel(r, j, field);
+    if (l.sky_model == SkyModel::Uniform)
+      r.object(j, field, {"name", "type", "intensity"}, keys({"model"}));
+    else  // the model gives the colour: no color or temperature_k
+      r.object(j, field, {"name", "type", "model", "sun_direction", "intensity"},
+               {"turbidity", "on"});
   } else {
     r.fail(dot(field, "type"), "unknown light type '" + type + "' (valid: point, spot, sun, sky)");
   }
@@ -476,6 +491,10 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
     // normalise once; a direction already unit to 1e-9 is kept bit for bit (round trips)
     if (std::abs(l.direction.norm() - 1.0) > 1e-9) l.direction.normalize();
   }
+  // kept as written (not normalised): Scene::validate insists on a unit vector above the horizon
+  if (j.contains("sun_direction"))
+    l.direction = r.vec3(j["sun_direction"], dot(field, "sun_direction"));
+  if (j.contains("turbidity")) l.turbidity = r.single(j["turbidity"], dot(field, "turbidity"));
   l.intensity = r.single(j["intensity"], dot(field, "intensity"));
   if (l.intensity < 0.f) r.fail(dot(field, "intensity"), "must be >= 0 (W/sr, or W/m^2 for a sun)");
   if (j.contains("color")) l.color = r.vec3f(j["color"], dot(field, "color"));

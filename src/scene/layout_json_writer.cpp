@@ -49,12 +49,21 @@ ojson lightToJson(const Light& l) {
   j["name"] = l.name;
   j["type"] = lightTypeName(l.type);
   const bool directional = l.type == LightType::Sun || l.type == LightType::Sky;
+  // a uniform sky writes no model (files from before the Preetham sky keep their bytes)
+  const bool preetham = l.type == LightType::Sky && l.sky_model == SkyModel::Preetham;
+  if (preetham) {
+    j["model"] = skyModelName(l.sky_model);
+    j["sun_direction"] = jsonArray(l.direction);
+    j["turbidity"] = jsonNumber(l.turbidity);
+  }
   if (!directional) j["position"] = jsonArray(l.position);
   if (l.type == LightType::Spot || l.type == LightType::Sun)
     j["direction"] = jsonArray(l.direction);
   j["intensity"] = jsonNumber(l.intensity);
-  j["color"] = jsonArray(l.color);
-  j["temperature_k"] = jsonNumber(l.temperature_k);
+  if (!preetham) {  // the model gives a Preetham sky's colour
+    j["color"] = jsonArray(l.color);
+    j["temperature_k"] = jsonNumber(l.temperature_k);
+  }
   if (l.type == LightType::Spot) {
     j["cone_deg"] = jsonNumber(l.cone_deg);
     j["falloff_deg"] = jsonNumber(l.falloff_deg);

@@ -55,6 +55,35 @@ const char* lightTypeName(LightType t) {
   return "?";
 }
 
+const char* skyModelName(SkyModel m) {
+  switch (m) {
+    case SkyModel::Uniform:
+      return "uniform";
+    case SkyModel::Preetham:
+      return "preetham";
+  }
+  return "?";
+}
+
+namespace {
+
+/// The ranges in which the Preetham sky model was fitted (render/sky.h).
+void validatePreetham(const Light& l, const std::string& where, const std::string& field) {
+  if (!(l.turbidity >= 2.f && l.turbidity <= 10.f))
+    throw InputError(
+        where, field + ".turbidity",
+        fmt::format("{} is outside 2..10 (2: very clear, 3: clear, 10: hazy)", l.turbidity));
+  const double norm = l.direction.norm();
+  if (!(std::abs(norm - 1.0) <= 1e-6))
+    throw InputError(where, field + ".sun_direction",
+                     fmt::format("must be a unit vector (its length is {})", norm));
+  if (!(l.direction.z() < 0.0))
+    throw InputError(where, field + ".sun_direction",
+                     "the sun must be above the horizon (z < 0: its light travels downwards)");
+}
+
+}  // namespace
+
 int Scene::findMesh(const std::string& id) const {
   for (size_t i = 0; i < meshes.size(); ++i)
     if (meshes[i].id == id) return static_cast<int>(i);
@@ -195,6 +224,8 @@ void Scene::validate(const std::string& where) const {
         !(l.angular_diameter_deg > 0.f && l.angular_diameter_deg < 30.f))
       throw InputError(where, field + ".angular_diameter_deg", "must be in (0, 30) degrees");
     if (!(l.max_distance >= 0.f)) throw InputError(where, field + ".max_distance", "must be >= 0");
+    if (l.type == LightType::Sky && l.sky_model == SkyModel::Preetham)
+      validatePreetham(l, where, field);
   }
   for (const auto& m : materials) {
     const std::string field = "materials['" + m.id + "']";

@@ -114,31 +114,42 @@ struct Object {
 /// Analytic lights (area lights are emissive materials on geometry).
 enum class LightType { Point, Spot, Sun, Sky };
 
+/// How a sky's radiance varies with direction: the same from everywhere (uniform), or the
+/// clear daylight sky of Preetham, Shirley and Smits 1999 (render/sky.h).
+enum class SkyModel { Uniform, Preetham };
+
 /// A light that is not geometry: isotropic point, spot (cone with a smooth edge), sun (a
-/// distant disk) or sky (uniform radiance from every direction no geometry blocks, i.e. seen
-/// through windows and openings). Radiometric units: point and spot `intensity` is radiant
-/// intensity in W/sr along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing
-/// it; sky `intensity` is radiance in W sr^-1 m^-2.
+/// distant disk) or sky (radiance from every direction no geometry blocks, i.e. seen through
+/// windows and openings). Radiometric units: point and spot `intensity` is radiant intensity in
+/// W/sr along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing it; a uniform
+/// sky's `intensity` is radiance in W sr^-1 m^-2 (from the whole sphere); a Preetham sky's is the
+/// irradiance in W/m^2 (luminance of the RGB) it gives an unoccluded horizontal surface: it
+/// shines only from above the horizon (world z > 0) and its colour comes from the model.
 struct Light {
   std::string name;
   LightType type = LightType::Point;
   Vec3 position = Vec3::Zero();        ///< point, spot (metres)
-  Vec3 direction = -Vec3::UnitZ();     ///< spot, sun: unit direction the light travels
+  Vec3 direction = -Vec3::UnitZ();     ///< spot, sun, Preetham sky (its sun): unit travel dir.
   Vec3f color{1.f, 1.f, 1.f};          ///< linear RGB tint, used when temperature_k == 0
   float temperature_k = 0.f;           ///< > 0: blackbody colour at this temperature (luminance 1)
-  float intensity = 1.f;               ///< W/sr (point, spot) or W/m^2 (sun), times the colour
+  float intensity = 1.f;               ///< W/sr, W/m^2 (sun, Preetham sky), W/(sr m^2) (sky)
   float cone_deg = 30.f;               ///< spot: half-angle of the lit cone
   float falloff_deg = 5.f;             ///< spot: width of the smooth edge inside the cone
   float angular_diameter_deg = 0.53f;  ///< sun: apparent diameter (the real sun: 0.53 deg)
   float max_distance = 0.f;            ///< point, spot: no light beyond this range (m); 0 = none
+  SkyModel sky_model = SkyModel::Uniform;  ///< sky
+  float turbidity = 3.f;                   ///< Preetham sky: haze, 2 (very clear) .. 10 (hazy)
   bool on = true;
 
-  /// Colour times intensity: RGB radiant intensity (point, spot) or irradiance (sun).
+  /// Colour times intensity: RGB radiant intensity (point, spot), irradiance (sun) or radiance
+  /// (uniform sky). A Preetham sky takes its colour from the model instead.
   Vec3f rgbIntensity() const;
 };
 
 /// Names of light types as written in layout files ("point", "spot", "sun", "sky").
 const char* lightTypeName(LightType t);
+/// Names of sky models as written in layout files ("uniform", "preetham").
+const char* skyModelName(SkyModel m);
 
 struct Scene {
   std::string name = "scene";

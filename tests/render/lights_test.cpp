@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "render/renderer.h"
+#include "render/sky.h"
 #include "scene/primitives.h"
 
 namespace inet {
@@ -158,6 +159,35 @@ TEST(Lights, UniformSkyOverAFloor) {
   sky.intensity = 0.7f;
   s.lights = {sky};
   EXPECT_NEAR(floorRadiance(s, 0, 0, 4096), kAlbedo * 0.7, 0.01 * kAlbedo * 0.7);
+}
+
+// A Preetham sky (sun at 35 degrees) over the floor: the floor's radiance is a/pi E with
+// E = int L cos dw over the upper hemisphere, integrated here from the model's radiance.
+TEST(Lights, PreethamSkyOverAFloor) {
+  Scene s = floorScene();
+  Light sky;
+  sky.name = "sky";
+  sky.type = LightType::Sky;
+  sky.sky_model = SkyModel::Preetham;
+  sky.turbidity = 3.f;
+  const double el = 35.0 * M_PI / 180.0;
+  sky.direction = -Vec3(std::cos(el) * std::cos(0.7), std::cos(el) * std::sin(0.7), std::sin(el));
+  sky.intensity = 2.f;  // W/m^2 on the floor, in luminance
+  s.lights = {sky};
+  const PreethamSkyLight model(sky);
+  double E_green = 0;  // midpoint rule in (theta, phi), exact solid angle per cell
+  const int nt = 300, np = 1200;
+  const double dt = 0.5 * M_PI / nt, dp = 2 * M_PI / np;
+  for (int i = 0; i < nt; ++i) {
+    const double t = (i + 0.5) * dt, w = (std::cos(i * dt) - std::cos((i + 1) * dt)) * dp;
+    for (int j = 0; j < np; ++j) {
+      const double p = (j + 0.5) * dp;
+      const Vec3f d(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+      E_green += model.radiance(d).y() * std::cos(t) * w;
+    }
+  }
+  const double expected = kAlbedo / M_PI * E_green;
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 256), expected, 0.01 * expected);
 }
 
 }  // namespace

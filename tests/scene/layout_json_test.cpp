@@ -284,6 +284,13 @@ json baseLayout() {
     "lights": [{"name": "bulb", "type": "point", "position": [0, 0, 2], "intensity": 1}]})");
 }
 
+/// A Preetham sky light entry (valid).
+json preethamSky() {
+  return json::parse(
+      R"({"name": "sky", "type": "sky", "model": "preetham", "sun_direction": [0, 0.6, -0.8],
+          "turbidity": 4, "intensity": 90})");
+}
+
 template <class F>
 std::string edited(F edit) {
   json j = baseLayout();
@@ -506,6 +513,46 @@ std::vector<BadLayout> objectCases() {
                            {"uvs", {{0, 0}, {1, 0}}}};
        }),
        "meshes[0].uvs", "2 entries for 3 vertices"},
+      {"sky_turbidity_1", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["turbidity"] = 1;
+       }),
+       "lights[0] ('sky').turbidity", "1 is outside 2..10"},
+      {"sky_turbidity_11", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["turbidity"] = 11;
+       }),
+       "lights[0] ('sky').turbidity", "11 is outside 2..10"},
+      {"sky_without_sun", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0].erase("sun_direction");
+       }),
+       "lights[0].sun_direction", "missing required key"},
+      {"sky_sun_not_unit", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["sun_direction"] = {0, 0.6, -0.9};
+       }),
+       "lights[0] ('sky').sun_direction", "must be a unit vector"},
+      {"sky_sun_below_horizon", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["sun_direction"] = {0, 0.6, 0.8};
+       }),
+       "lights[0] ('sky').sun_direction", "above the horizon"},
+      {"sky_model_hosek", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["model"] = "hosek";
+       }),
+       "lights[0].model", "unknown sky model 'hosek' (valid: uniform, preetham)"},
+      {"sky_preetham_color", edited([](json& j) {
+         j["lights"][0] = preethamSky();
+         j["lights"][0]["color"] = {1, 1, 1};
+       }),
+       "lights[0].color", "unknown key"},
+      {"sky_uniform_turbidity", edited([](json& j) {
+         j["lights"][0] =
+             json::parse(R"({"name": "sky", "type": "sky", "intensity": 1, "turbidity": 3})");
+       }),
+       "lights[0].turbidity", "unknown key"},
       {"zero_normal", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"},
                            {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
@@ -563,6 +610,43 @@ TEST(LayoutJson, MotionRoundTripsAndInterpolates) {
   const Mat3 R = Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()).toRotationMatrix();
   EXPECT_TRUE((mid.block<3, 3>(0, 0).isApprox(R * o.T_world_object.block<3, 3>(0, 0), 1e-9)));
   EXPECT_TRUE((o.transformAt(9.0).block<3, 1>(0, 3).isApprox(Vec3(2, 0, 0.25))));
+}
+
+TEST(LayoutJson, PreethamSkyRoundTrips) {
+  TempDir dir;
+  json j = baseLayout();
+  j["lights"].push_back(preethamSky());
+  j["lights"].push_back(preethamSky());
+  j["lights"][2]["name"] = "default_turbidity";
+  j["lights"][2].erase("turbidity");
+  j["lights"][2]["sun_direction"] = {0.48, 0.6, -0.64};
+  j["lights"].push_back(
+      json::parse(R"({"name": "grey", "type": "sky", "model": "uniform", "intensity": 0.5})"));
+  const std::string path = dir.write("sky.json", j.dump(1));
+  Scene s = loadLayout(path);
+  ASSERT_EQ(s.lights.size(), 4u);
+  const Light& sky = s.lights[1];
+  EXPECT_EQ(sky.type, LightType::Sky);
+  EXPECT_EQ(sky.sky_model, SkyModel::Preetham);
+  EXPECT_EQ(sky.turbidity, 4.f);
+  EXPECT_EQ(sky.direction, Vec3(0, 0.6, -0.8)) << "kept as written";
+  EXPECT_EQ(sky.intensity, 90.f);
+  EXPECT_EQ(s.lights[2].turbidity, 3.f) << "default";
+  EXPECT_EQ(s.lights[3].sky_model, SkyModel::Uniform);
+  // load -> save -> load -> save: the same bytes; a uniform sky writes no model
+  const std::string saved1 = (dir.path() / "saved1.json").string();
+  saveLayout(s, saved1);
+  Scene s2 = loadLayout(saved1);
+  const std::string saved2 = (dir.path() / "saved2.json").string();
+  saveLayout(s2, saved2);
+  const std::string text = readTextFile(saved1);
+  EXPECT_EQ(text, readTextFile(saved2));
+  expectScenesEqual(s, s2);
+  EXPECT_NE(text.find("\"model\": \"preetham\",\n      \"sun_direction\": [0, 0.6, -0.8],\n      "
+                      "\"turbidity\": 4,\n      \"intensity\": 90,\n      \"on\": true"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("\"model\": \"uniform\""), std::string::npos) << "the default is left out";
 }
 
 TEST(LayoutJson, MissingLayoutFile) {

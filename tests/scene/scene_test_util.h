@@ -130,6 +130,8 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
         EXPECT_TRUE(sameBits(x.direction[k], y.direction[k]));
       }
     }
+    EXPECT_EQ(x.sky_model, y.sky_model);
+    EXPECT_EQ(x.turbidity, y.turbidity);
     EXPECT_EQ(x.color, y.color);
     EXPECT_EQ(x.intensity, y.intensity);
     EXPECT_EQ(x.temperature_k, y.temperature_k);
