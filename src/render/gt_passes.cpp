@@ -58,10 +58,11 @@ struct PassWriter {
     if (!normal && !albedo) return writeIds(i, s);
     // the geometric normal decides which side faces the camera; a smooth normal near a
     // silhouette may point away while the surface itself faces the camera
-    Vec3f ng = scene.worldNormal(object, ng_object);
-    const float flip = ng.dot(d_world) > 0 ? -1.f : 1.f;
-    Vec3f n = ng;
+    // (unnormalised: the flat common case normalises once, below)
+    Vec3f n = s.normal_to_world * ng_object;
+    const float flip = n.dot(d_world) > 0 ? -1.f : 1.f;
     if (!s.plain()) {
+      const Vec3f ng = n.normalized();
       // smooth normals and textured albedo; the normal pass leaves normal maps out (they fake
       // detail the depth pass does not have)
       SurfacePoint sp;
