@@ -74,6 +74,76 @@ TEST(PathTracer, FurnaceConvergesToAnalyticRadiance) {
   EXPECT_NEAR(meanOf(f.rgb), 2.0, 0.02);
 }
 
+// The white furnace as usually stated: a closed sphere of albedo 0.8 under a uniform
+// environment of radiance 1. Every direction above any point of a convex object sees the
+// environment, so the sphere shows exactly 0.8 and the background 1. Checked for the analytic
+// sphere and for a tessellated one with smooth vertex normals (whose shading frames differ from
+// its facets: no energy may appear or vanish through them).
+TEST(PathTracer, WhiteFurnaceSphere) {
+  for (bool tessellated : {false, true}) {
+    SCOPED_TRACE(tessellated ? "tessellated, smooth normals" : "analytic sphere");
+    Scene s;
+    Mesh ball;
+    if (!tessellated) {
+      ball = makePrimitive("sphere", {{"radius", 0.5}}, "t", "ball");
+    } else {  // UV sphere, 48 x 24, normals = positions / radius
+      const int nu = 48, nv = 24;
+      for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i) {
+          const double th = M_PI * j / nv, ph = 2 * M_PI * i / nu;
+          Vec3f n(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+          ball.positions.push_back(0.5f * n);
+          ball.normals.push_back(n.normalized());
+        }
+      for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+          const uint32_t a = j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
+          if (j > 0) ball.triangles.push_back(Tri(a, c, b));  // outward winding
+          if (j < nv - 1) ball.triangles.push_back(Tri(b, c, d));
+        }
+    }
+    ball.id = "ball";
+    s.meshes = {ball};
+    Material m;
+    m.id = "white";
+    m.albedo = Vec3f::Constant(0.8f);
+    s.materials = {m};
+    s.objects = {Object{"ball", 0, 0, Mat4::Identity(), 40, 1, {}}};
+    Light sky;
+    sky.name = "sky";
+    sky.type = LightType::Sky;
+    sky.intensity = 1.f;
+    s.lights = {sky};
+    s.validate("furnace");
+    Renderer r(s);
+    CameraIntrinsics K = smallCamera(48, 48, 60);  // the ball fills the middle of the image
+    RenderOptions opt = rgbOnly(256, 64);
+    opt.passes |= static_cast<PassMask>(Pass::Instance);
+    Frame f;
+    r.render(K, Pose::lookAt(Vec3(0, -2, 0.3), Vec3(0, 0, 0), Vec3::UnitZ()), opt, 0, f);
+    double on = 0, off = 0;
+    int n_on = 0, n_off = 0;
+    for (int y = 0; y < K.height; ++y)
+      for (int x = 0; x < K.width; ++x) {
+        const double v = f.rgb.at(x, y, 1);
+        // whole pixels only: edge pixels mix ball and background
+        bool edge = false;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = std::clamp(x + dx, 0, K.width - 1),
+                      yy = std::clamp(y + dy, 0, K.height - 1);
+            edge = edge || f.instance.at(xx, yy) != f.instance.at(x, y);
+          }
+        if (edge) continue;
+        (f.instance.at(x, y) ? on : off) += v;
+        ++(f.instance.at(x, y) ? n_on : n_off);
+      }
+    ASSERT_GT(n_on, 200);
+    EXPECT_NEAR(on / n_on, 0.8, 0.008);
+    EXPECT_NEAR(off / n_off, 1.0, 1e-5);
+  }
+}
+
 // With max_bounces = 1 the image is emission + one bounce: Le (1 + a).
 TEST(PathTracer, SingleBounceFurnace) {
   Scene s = furnace(0.8f, 0.5f);
