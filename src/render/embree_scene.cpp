@@ -185,6 +185,7 @@ void EmbreeScene::setUpShading(const Object& o, const Mesh& mesh, const Material
     a->positions = mesh.positions;
     a->triangles = mesh.triangles;
     a->normals = mesh.normals;
+    for (Vec3f& n : a->normals) n.normalize();
     a->uvs = mesh.uvs;
   }
   s.attributes = a.get();

@@ -253,13 +253,14 @@ Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
     mesh.triangles.push_back(t);
   }
   const size_t nv = mesh.positions.size();
-  mesh.normals = parseVertexAttribute<Vec3f>(r, j, field, "normals", nv,
-                                             [&](const json& e, const std::string& f) {
-                                               Vec3f n = r.vec3f(e, f);
-                                               if (!(n.norm() > 1e-6f))
-                                                 r.fail(f, "a normal must not be zero");
-                                               return Vec3f(n.normalized());
-                                             });
+  // normals are kept as written (normalising here would change the bits on every save and
+  // load); the renderer normalises them
+  mesh.normals = parseVertexAttribute<Vec3f>(
+      r, j, field, "normals", nv, [&](const json& e, const std::string& f) {
+        Vec3f n = r.vec3f(e, f);
+        if (!(n.norm() > 1e-6f)) r.fail(f, "a normal must not be zero");
+        return n;
+      });
   mesh.uvs = parseVertexAttribute<Vec2f>(
       r, j, field, "uvs", nv, [&](const json& e, const std::string& f) { return r.vec2f(e, f); });
   return mesh;

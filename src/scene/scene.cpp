@@ -158,8 +158,8 @@ void Scene::validate(const std::string& where) const {
                        fmt::format("{} normals for {} vertices (need one per vertex)",
                                    m.normals.size(), m.positions.size()));
     for (const auto& n : m.normals)
-      if (!n.allFinite() || std::fabs(n.norm() - 1.f) > 1e-3f)
-        throw InputError(where, field + ".normals", "normals must be finite and unit length");
+      if (!n.allFinite() || !(n.norm() > 1e-6f))
+        throw InputError(where, field + ".normals", "normals must be finite and non-zero");
     if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
       throw InputError(where, field + ".uvs",
                        fmt::format("{} texture coordinates for {} vertices (need one per vertex)",

@@ -35,7 +35,7 @@ struct MeshSource {
 
 /// Geometry in object space: triangles, or one analytic sphere (centre 0, `sphere_radius`).
 /// `normals` and `uvs`, when not empty, have one entry per position: smooth shading normals
-/// (unit length, object space) and texture coordinates (OpenGL convention: v points up the image).
+/// (object space, non-zero; the renderer normalises them) and texture coordinates (OpenGL convention: v points up the image).
 struct Mesh {
   std::string id;
   MeshSource source;
