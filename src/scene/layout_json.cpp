@@ -255,12 +255,13 @@ Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
   const size_t nv = mesh.positions.size();
   // normals are kept as written (normalising here would change the bits on every save and
   // load); the renderer normalises them
-  mesh.normals = parseVertexAttribute<Vec3f>(
-      r, j, field, "normals", nv, [&](const json& e, const std::string& f) {
-        Vec3f n = r.vec3f(e, f);
-        if (!(n.norm() > 1e-6f)) r.fail(f, "a normal must not be zero");
-        return n;
-      });
+  mesh.normals = parseVertexAttribute<Vec3f>(r, j, field, "normals", nv,
+                                             [&](const json& e, const std::string& f) {
+                                               Vec3f n = r.vec3f(e, f);
+                                               if (!(n.norm() > 1e-6f))
+                                                 r.fail(f, "a normal must not be zero");
+                                               return n;
+                                             });
   mesh.uvs = parseVertexAttribute<Vec2f>(
       r, j, field, "uvs", nv, [&](const json& e, const std::string& f) { return r.vec2f(e, f); });
   return mesh;
@@ -402,9 +403,10 @@ int resolveId(const Reader& r, const std::map<std::string, int>& ids, const std:
 
 Object parseObject(const Reader& r, const json& j, const std::string& field,
                    const std::map<std::string, int>& mesh_ids,
-                   const std::map<std::string, int>& material_ids) {
+                   const std::map<std::string, int>& material_ids,
+                   const std::map<std::string, int>& room_ids) {
   r.object(j, field, {"name", "mesh", "material", "instance", "transform"},
-           {"nyu40", "category", "motion"});
+           {"nyu40", "category", "motion", "kind", "part", "room", "physics"});
   Object o;
   o.name = r.string(j["name"], dot(field, "name"));
   o.mesh =
@@ -440,7 +442,50 @@ Object parseObject(const Reader& r, const json& j, const std::string& field,
       o.motion.push_back(key);
     }
   }
+  if (j.contains("kind")) o.kind = r.string(j["kind"], dot(field, "kind"));
+  if (j.contains("part")) o.part = r.string(j["part"], dot(field, "part"));
+  if (j.contains("room"))
+    o.room =
+        resolveId(r, room_ids, r.string(j["room"], dot(field, "room")), dot(field, "room"), "room");
+  if (j.contains("physics")) {
+    const std::string pf = dot(field, "physics");
+    const json& p = j["physics"];
+    r.object(p, pf, {"mass_kg", "friction", "movable"}, {});
+    PhysicsProps phys;
+    phys.mass_kg = r.single(p["mass_kg"], dot(pf, "mass_kg"));
+    if (!(phys.mass_kg > 0.f)) r.fail(dot(pf, "mass_kg"), "must be > 0");
+    phys.friction = r.single(p["friction"], dot(pf, "friction"));
+    if (!(phys.friction >= 0.f)) r.fail(dot(pf, "friction"), "must be >= 0");
+    if (!p["movable"].is_boolean())
+      r.fail(dot(pf, "movable"), "expected true or false, got " + describe(p["movable"]));
+    phys.movable = p["movable"].get<bool>();
+    o.physics = phys;
+  }
   return o;
+}
+
+Room parseRoom(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"id", "type", "outline"}, {"floor_z", "ceiling_z"});
+  Room room;
+  room.id = r.string(j["id"], dot(field, "id"));
+  room.type = r.string(j["type"], dot(field, "type"));
+  const auto& types = roomTypeNames();
+  if (std::find(types.begin(), types.end(), room.type) == types.end())
+    r.fail(dot(field, "type"),
+           "unknown room type '" + room.type + "' (valid: " + join(types) + ")");
+  const std::string of = dot(field, "outline");
+  const json& pts = r.array(j["outline"], of);
+  if (pts.size() < 3) r.fail(of, "a room outline needs 3 or more [x, y] points");
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const std::string pf = at(of, k);
+    const json& p = r.fixedArray(pts[k], pf, 2);
+    room.outline.emplace_back(r.number(p[0], at(pf, 0)), r.number(p[1], at(pf, 1)));
+  }
+  if (!(room.area() > 0)) r.fail(of, "must enclose an area, counter-clockwise seen from above");
+  if (j.contains("floor_z")) room.floor_z = r.number(j["floor_z"], dot(field, "floor_z"));
+  if (j.contains("ceiling_z")) room.ceiling_z = r.number(j["ceiling_z"], dot(field, "ceiling_z"));
+  if (!(room.ceiling_z > room.floor_z)) r.fail(dot(field, "ceiling_z"), "must be above floor_z");
+  return room;
 }
 
 /// A sky's "model" ("uniform" when absent).
@@ -458,7 +503,7 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
     r.fail(dot(field, "type"), "missing required key (point, spot, sun or sky)");
   const std::string type = r.string(j["type"], dot(field, "type"));
   Light l;
-  const Keys common = {"color", "temperature_k", "on"};
+  const Keys common = {"color", "temperature_k", "on", "object"};
   auto keys = [&](Keys extra) {
     extra.insert(extra.end(), common.begin(), common.end());
     return extra;
@@ -480,7 +525,7 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
       r.object(j, field, {"name", "type", "intensity"}, keys({"model"}));
     else  // the model gives the colour: no color or temperature_k
       r.object(j, field, {"name", "type", "model", "sun_direction", "intensity"},
-               {"turbidity", "on"});
+               {"turbidity", "on", "object"});
   } else {
     r.fail(dot(field, "type"), "unknown light type '" + type + "' (valid: point, spot, sun, sky)");
   }
@@ -514,6 +559,7 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
       r.fail(dot(field, "on"), "expected true or false, got " + describe(j["on"]));
     l.on = j["on"].get<bool>();
   }
+  if (j.contains("object")) l.object = r.string(j["object"], dot(field, "object"));
   return l;
 }
 
@@ -563,7 +609,8 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   const Reader r(path);
   const json root = parseText(text, path);
   checkHeader(r, root);
-  r.object(root, "", {"format", "version", "meshes", "materials", "objects"}, {"name", "lights"});
+  r.object(root, "", {"format", "version", "meshes", "materials", "objects"},
+           {"name", "lights", "rooms"});
   Scene scene;
   if (root.contains("name")) scene.name = r.string(root["name"], "name");
   const fs::path base_dir = fs::path(path).parent_path();
@@ -573,9 +620,14 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   auto material_ids =
       parseList(r, root, "materials", scene.materials,
                 [&](const json& j, const auto& f) { return parseMaterial(r, j, f, base_dir); });
+  std::map<std::string, int> room_ids;
+  if (root.contains("rooms"))
+    room_ids = parseList(r, root, "rooms", scene.rooms,
+                         [&](const json& j, const auto& f) { return parseRoom(r, j, f); });
   const json& objects = r.array(root["objects"], "objects");
   for (size_t i = 0; i < objects.size(); ++i)
-    scene.objects.push_back(parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids));
+    scene.objects.push_back(
+        parseObject(r, objects[i], at("objects", i), mesh_ids, material_ids, room_ids));
   if (root.contains("lights")) {
     const json& lights = r.array(root["lights"], "lights");
     for (size_t i = 0; i < lights.size(); ++i)

@@ -71,6 +71,7 @@ ojson lightToJson(const Light& l) {
   if (l.type == LightType::Sun) j["angular_diameter_deg"] = jsonNumber(l.angular_diameter_deg);
   if (!directional) j["max_distance"] = jsonNumber(l.max_distance);
   j["on"] = l.on;
+  if (!l.object.empty()) j["object"] = l.object;
   return j;
 }
 
@@ -168,6 +169,28 @@ ojson objectToJson(const Scene& scene, const Object& o) {
     }
     j["motion"] = std::move(keys);
   }
+  if (!o.kind.empty()) j["kind"] = o.kind;
+  if (!o.part.empty()) j["part"] = o.part;
+  if (o.room >= 0) j["room"] = scene.rooms[o.room].id;
+  if (o.physics) {
+    ojson p;
+    p["mass_kg"] = jsonNumber(o.physics->mass_kg);
+    p["friction"] = jsonNumber(o.physics->friction);
+    p["movable"] = o.physics->movable;
+    j["physics"] = std::move(p);
+  }
+  return j;
+}
+
+ojson roomToJson(const Room& r) {
+  ojson j;
+  j["id"] = r.id;
+  j["type"] = r.type;
+  ojson pts = ojson::array();
+  for (const auto& p : r.outline) pts.push_back({jsonNumber(p.x()), jsonNumber(p.y())});
+  j["outline"] = std::move(pts);
+  j["floor_z"] = jsonNumber(r.floor_z);
+  j["ceiling_z"] = jsonNumber(r.ceiling_z);
   return j;
 }
 
@@ -191,6 +214,7 @@ void checkWritable(const Scene& scene, const std::string& where) {
   scene.validate(where);
   checkIds(scene.meshes, where, "meshes");
   checkIds(scene.materials, where, "materials");
+  checkIds(scene.rooms, where, "rooms");
   if (scene.name.empty()) throw InputError(where, "name", "empty scene name");
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshSource& src = scene.meshes[i].source;
@@ -246,6 +270,10 @@ std::string layoutToJson(const Scene& scene) {
   root["format"] = kLayoutFormat;
   root["version"] = supportedLayoutVersions().back();
   root["name"] = scene.name;
+  if (!scene.rooms.empty()) {  // layouts without rooms keep their bytes
+    root["rooms"] = ojson::array();
+    for (const auto& r : scene.rooms) root["rooms"].push_back(roomToJson(r));
+  }
   root["meshes"] = ojson::array();
   for (size_t i = 0; i < scene.meshes.size(); ++i)
     root["meshes"].push_back(meshToJson(scene.meshes[i], where, at("meshes", i)));

@@ -122,6 +122,35 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
+const std::vector<std::string>& roomTypeNames() {
+  // the 16 room types of the interior-design trade (issue 4)
+  static const std::vector<std::string> names = {
+      "living_room",  "dining_room", "kitchen",   "master_bedroom",  "second_bedroom", "kids_room",
+      "elderly_room", "study",       "bathroom",  "master_bathroom", "balcony",        "corridor",
+      "entrance",     "storage",     "cloakroom", "laundry"};
+  return names;
+}
+
+double Room::area() const {
+  double a = 0;
+  for (size_t i = 0; i < outline.size(); ++i) {
+    const Eigen::Vector2d& p = outline[i];
+    const Eigen::Vector2d& q = outline[(i + 1) % outline.size()];
+    a += p.x() * q.y() - q.x() * p.y();
+  }
+  return 0.5 * a;
+}
+
+bool Room::contains(double x, double y) const {
+  bool in = false;  // even-odd crossing test
+  for (size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+    const Eigen::Vector2d &a = outline[i], &b = outline[j];
+    if ((a.y() > y) != (b.y() > y) && x < (b.x() - a.x()) * (y - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
 Mat4 Object::transformAt(double t_s) const {
   if (motion.empty()) return T_world_object;
   Pose p;
@@ -142,6 +171,24 @@ Mat4 Object::transformAt(double t_s) const {
 }
 
 void Scene::validate(const std::string& where) const {
+  for (size_t i = 0; i < rooms.size(); ++i) {
+    const Room& r = rooms[i];
+    const std::string field = fmt::format("rooms[{}] ('{}')", i, r.id);
+    if (r.id.empty()) throw InputError(where, field + ".id", "must not be empty");
+    const auto& types = roomTypeNames();
+    if (std::find(types.begin(), types.end(), r.type) == types.end())
+      throw InputError(
+          where, field + ".type",
+          fmt::format("unknown room type '{}' (valid: {})", r.type, fmt::join(types, ", ")));
+    if (r.outline.size() < 3) throw InputError(where, field + ".outline", "needs 3 or more points");
+    for (const auto& p : r.outline)
+      if (!p.allFinite()) throw InputError(where, field + ".outline", "non-finite point");
+    if (!(r.area() > 0))
+      throw InputError(where, field + ".outline",
+                       "must enclose an area, counter-clockwise seen from above");
+    if (!(std::isfinite(r.floor_z) && std::isfinite(r.ceiling_z) && r.ceiling_z > r.floor_z))
+      throw InputError(where, field + ".ceiling_z", "must be finite and above floor_z");
+  }
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];
     std::string field = fmt::format("meshes[{}] ('{}')", i, m.id);
@@ -198,12 +245,22 @@ void Scene::validate(const std::string& where) const {
           std::abs(kf.pose.q.norm() - 1.0) > 1e-6)
         throw InputError(where, f, "needs a finite translation and a unit quaternion");
     }
+    if (o.room < -1 || o.room >= static_cast<int>(rooms.size()))
+      throw InputError(where, field + ".room", "no such room");
+    if (o.physics && !(std::isfinite(o.physics->mass_kg) && o.physics->mass_kg > 0.f &&
+                       std::isfinite(o.physics->friction) && o.physics->friction >= 0.f))
+      throw InputError(where, field + ".physics",
+                       "needs a finite mass_kg > 0 and a finite friction >= 0");
     if (o.moving() && materials[o.material].isEmissive())
       throw InputError(where, field + ".motion",
                        "an emissive object cannot move (area lights are sampled where they rest)");
   }
   for (size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
+    if (!l.object.empty() && std::none_of(objects.begin(), objects.end(),
+                                          [&](const Object& o) { return o.name == l.object; }))
+      throw InputError(where, fmt::format("lights[{}] ('{}').object", i, l.name),
+                       fmt::format("no object is named '{}'", l.object));
     std::string field = fmt::format("lights[{}] ('{}')", i, l.name);
     if (!l.position.allFinite()) throw InputError(where, field + ".position", "must be finite");
     if (!(l.intensity >= 0.f && std::isfinite(l.intensity)))

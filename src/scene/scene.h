@@ -35,7 +35,8 @@ struct MeshSource {
 
 /// Geometry in object space: triangles, or one analytic sphere (centre 0, `sphere_radius`).
 /// `normals` and `uvs`, when not empty, have one entry per position: smooth shading normals
-/// (object space, non-zero; the renderer normalises them) and texture coordinates (OpenGL convention: v points up the image).
+/// (object space, non-zero; the renderer normalises them) and texture coordinates (OpenGL
+/// convention: v points up the image).
 struct Mesh {
   std::string id;
   MeshSource source;
@@ -97,6 +98,15 @@ struct ObjectKeyframe {
   Pose pose;
 };
 
+/// The physics record of an object (the InteriorNet paper's: mass, friction, movable), for
+/// physics-based rearrangement. The same on every part of one instance.
+struct PhysicsProps {
+  float mass_kg = 1.f;    ///< > 0
+  float friction = 0.5f;  ///< Coulomb friction coefficient, >= 0
+  bool movable = false;   ///< may a rearrangement move it
+  bool operator==(const PhysicsProps&) const = default;
+};
+
 struct Object {
   std::string name;
   int mesh = -1;      ///< index into Scene::meshes
@@ -105,6 +115,10 @@ struct Object {
   int nyu40 = 0;     ///< NYU40 class id, 0 = void / unlabelled, 1..40
   int instance = 0;  ///< instance id (1..65535), shared by the parts of one object
   std::vector<ObjectKeyframe> motion;  ///< empty: static; else sorted by strictly rising t_s
+  std::string kind;  ///< fine-grained category ("sofa", "nightstand"); "" = the NYU40 class
+  std::string part;  ///< part of the instance ("seat", "leg_2"); "" = the whole object
+  int room = -1;     ///< index into Scene::rooms, -1 = none
+  std::optional<PhysicsProps> physics;  ///< absent = unknown (imported scenes)
 
   bool moving() const { return !motion.empty(); }
   /// Object-to-world transform at scene time t_s (T_world_object when static).
@@ -140,6 +154,7 @@ struct Light {
   SkyModel sky_model = SkyModel::Uniform;  ///< sky
   float turbidity = 3.f;                   ///< Preetham sky: haze, 2 (very clear) .. 10 (hazy)
   bool on = true;
+  std::string object;  ///< the object (instance name) this light belongs to, e.g. a lamp; "" = none
 
   /// Colour times intensity: RGB radiant intensity (point, spot), irradiance (sun) or radiance
   /// (uniform sky). A Preetham sky takes its colour from the model instead.
@@ -151,8 +166,26 @@ const char* lightTypeName(LightType t);
 /// Names of sky models as written in layout files ("uniform", "preetham").
 const char* skyModelName(SkyModel m);
 
+/// Room types of the interior-design trade, as written in layout files ("living_room", ...).
+const std::vector<std::string>& roomTypeNames();
+
+/// A room: its type and its floor outline (a simple polygon, counter-clockwise seen from above,
+/// metres), between a floor and a ceiling height.
+struct Room {
+  std::string id;
+  std::string type = "living_room";  ///< one of roomTypeNames()
+  std::vector<Eigen::Vector2d> outline;
+  double floor_z = 0.0;
+  double ceiling_z = 2.7;
+  /// Floor area of the outline (m^2).
+  double area() const;
+  /// Is (x, y) inside the outline?
+  bool contains(double x, double y) const;
+};
+
 struct Scene {
   std::string name = "scene";
+  std::vector<Room> rooms;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;

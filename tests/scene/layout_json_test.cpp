@@ -321,8 +321,24 @@ std::vector<BadLayout> headerCases() {
       {"future_version", edited([](json& j) { j["version"] = 2; }), "version",
        "this build reads version 1"},
       {"version_as_string", edited([](json& j) { j["version"] = "1"; }), "version", "unsupported"},
-      {"rooms_not_yet", edited([](json& j) { j["rooms"] = json::array(); }), "rooms",
-       "unknown key"},
+      {"room_unknown_type", edited([](json& j) {
+         j["rooms"] =
+             json::parse(R"([{"id": "r", "type": "ballroom", "outline": [[0,0],[1,0],[1,1]]}])");
+       }),
+       "rooms[0].type", "unknown room type 'ballroom' (valid: living_room"},
+      {"room_clockwise", edited([](json& j) {
+         j["rooms"] =
+             json::parse(R"([{"id": "r", "type": "kitchen", "outline": [[0,0],[0,1],[1,1]]}])");
+       }),
+       "rooms[0].outline", "counter-clockwise"},
+      {"object_unknown_room", edited([](json& j) { j["objects"][0]["room"] = "attic"; }),
+       "objects[0].room", "unknown room id 'attic'"},
+      {"physics_zero_mass", edited([](json& j) {
+         j["objects"][0]["physics"] = {{"mass_kg", 0}, {"friction", 0.2}, {"movable", true}};
+       }),
+       "objects[0].physics.mass_kg", "> 0"},
+      {"light_unknown_object", edited([](json& j) { j["lights"][0]["object"] = "lamp_9"; }),
+       "lights[0] ('bulb').object", "no object is named 'lamp_9'"},
       {"missing_objects", edited([](json& j) { j.erase("objects"); }), "objects",
        "missing required key"},
   };
@@ -647,6 +663,36 @@ TEST(LayoutJson, PreethamSkyRoundTrips) {
             std::string::npos)
       << text;
   EXPECT_EQ(text.find("\"model\": \"uniform\""), std::string::npos) << "the default is left out";
+}
+
+TEST(LayoutJson, RoomsKindsPartsPhysicsAndLightBindingRoundTrip) {
+  json j = baseLayout();
+  j["rooms"] = json::parse(
+      R"([{"id": "lr", "type": "living_room", "outline": [[0, 0], [4, 0], [4, 3.5], [0, 3.5]],
+           "floor_z": 0, "ceiling_z": 2.65}])");
+  j["objects"][0]["kind"] = "storage_box";
+  j["objects"][0]["part"] = "lid";
+  j["objects"][0]["room"] = "lr";
+  j["objects"][0]["physics"] = {{"mass_kg", 2.5}, {"friction", 0.15}, {"movable", true}};
+  j["lights"][0]["object"] = "crate";
+  Scene s = parseLayout(j.dump(), "rooms.json");
+  ASSERT_EQ(s.rooms.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.rooms[0].area(), 14.0);
+  EXPECT_TRUE(s.rooms[0].contains(1, 1));
+  EXPECT_FALSE(s.rooms[0].contains(5, 1));
+  const Object& o = s.objects[0];
+  EXPECT_EQ(o.kind, "storage_box");
+  EXPECT_EQ(o.part, "lid");
+  EXPECT_EQ(o.room, 0);
+  ASSERT_TRUE(o.physics.has_value());
+  EXPECT_EQ(*o.physics, (PhysicsProps{2.5f, 0.15f, true}));
+  EXPECT_EQ(s.lights[0].object, "crate");
+  const std::string text = layoutToJson(s);
+  EXPECT_EQ(layoutToJson(parseLayout(text, "again.json")), text);
+  // a layout without these keys writes none of them (older files keep their bytes)
+  const std::string plain = layoutToJson(parseLayout(baseLayout().dump(), "base.json"));
+  for (const char* key : {"\"rooms\"", "\"kind\"", "\"physics\"", "\"object\""})
+    EXPECT_EQ(plain.find(key), std::string::npos) << key;
 }
 
 TEST(LayoutJson, MissingLayoutFile) {

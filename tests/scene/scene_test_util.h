@@ -88,6 +88,16 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.sphere_radius, y.sphere_radius);
     EXPECT_EQ(x.positions, y.positions);
     EXPECT_EQ(x.triangles, y.triangles);
+    EXPECT_EQ(x.normals, y.normals);
+    EXPECT_EQ(x.uvs, y.uvs);
+  }
+  ASSERT_EQ(a.rooms.size(), b.rooms.size());
+  for (size_t i = 0; i < a.rooms.size(); ++i) {
+    EXPECT_EQ(a.rooms[i].id, b.rooms[i].id);
+    EXPECT_EQ(a.rooms[i].type, b.rooms[i].type);
+    EXPECT_EQ(a.rooms[i].outline, b.rooms[i].outline);
+    EXPECT_TRUE(sameBits(a.rooms[i].floor_z, b.rooms[i].floor_z));
+    EXPECT_TRUE(sameBits(a.rooms[i].ceiling_z, b.rooms[i].ceiling_z));
   }
   ASSERT_EQ(a.materials.size(), b.materials.size());
   for (size_t i = 0; i < a.materials.size(); ++i) {
@@ -102,6 +112,10 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     if (a.materials[i].type == MaterialType::Conductor) {
       EXPECT_EQ(a.materials[i].metal, b.materials[i].metal);
     }
+    EXPECT_EQ(a.materials[i].albedo_texture, b.materials[i].albedo_texture);
+    EXPECT_EQ(a.materials[i].roughness_texture, b.materials[i].roughness_texture);
+    EXPECT_EQ(a.materials[i].normal_texture, b.materials[i].normal_texture);
+    EXPECT_EQ(a.materials[i].uv_scale, b.materials[i].uv_scale);
   }
   ASSERT_EQ(a.objects.size(), b.objects.size());
   for (size_t i = 0; i < a.objects.size(); ++i) {
@@ -115,6 +129,16 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
           << "transform element " << k;
     EXPECT_EQ(x.nyu40, y.nyu40);
     EXPECT_EQ(x.instance, y.instance);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.part, y.part);
+    EXPECT_EQ(x.room, y.room);
+    EXPECT_EQ(x.physics, y.physics);
+    ASSERT_EQ(x.motion.size(), y.motion.size());
+    for (size_t k = 0; k < x.motion.size(); ++k) {
+      EXPECT_TRUE(sameBits(x.motion[k].t_s, y.motion[k].t_s));
+      EXPECT_EQ(x.motion[k].pose.t, y.motion[k].pose.t);
+      EXPECT_EQ(x.motion[k].pose.q.coeffs(), y.motion[k].pose.q.coeffs());
+    }
   }
   ASSERT_EQ(a.lights.size(), b.lights.size());
   for (size_t i = 0; i < a.lights.size(); ++i) {
@@ -136,6 +160,7 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.intensity, y.intensity);
     EXPECT_EQ(x.temperature_k, y.temperature_k);
     EXPECT_EQ(x.on, y.on);
+    EXPECT_EQ(x.object, y.object);
   }
 }
 
