@@ -9,6 +9,9 @@
 
 #include "common.h"
 #include "core/error.h"
+#include "core/progress.h"
+#include "procedural/apartment.h"
+#include "scene/light_xml.h"
 #include "scene/layout_json.h"
 #include "scene/nyu40.h"
 
@@ -55,17 +58,77 @@ void importScene(Scene s, const std::string& out) {
              s.materials.size(), s.meshes.size());
 }
 
+struct GenerateLayoutArgs {
+  uint64_t seed = 0;
+  int rooms = 0;
+  int count = 1;
+  int texture_size = 256;
+  bool daylight = true;
+  std::string out;
+};
+
+/// One apartment into `dir`: layout.json, light.xml and textures/.
+void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir);
+  ApartmentOptions opt;
+  opt.seed = seed;
+  opt.rooms = a.rooms;
+  opt.texture_size = a.texture_size;
+  opt.daylight = a.daylight;
+  Apartment apt = makeApartment(opt, dir, dir / "textures");
+  saveLayout(apt.scene, (dir / "layout.json").string());
+  saveLightXml(apt.scene, (dir / "light.xml").string());
+}
+
+void generateLayouts(const GenerateLayoutArgs& a) {
+  namespace fs = std::filesystem;
+  if (a.out.empty()) throw InputError("", "--out", "an output folder is needed");
+  if (a.count < 1) throw InputError("", "--count", "must be >= 1");
+  if (a.count == 1) {
+    generateOne(a, a.seed, a.out);
+    fmt::print("wrote {}/layout.json and light.xml\n", a.out);
+    return;
+  }
+  ProgressBar bar(a.count, "layouts");
+  for (int k = 0; k < a.count; ++k) {
+    const uint64_t seed = a.seed + static_cast<uint64_t>(k);
+    const fs::path dir = fs::path(a.out) / fmt::format("seed_{:06d}", seed);
+    if (!fs::exists(dir / "layout.json")) generateOne(a, seed, dir);  // a rerun resumes
+    bar.update(k + 1);
+  }
+  bar.finish();
+  fmt::print("wrote {} layouts under {}\n", a.count, a.out);
+}
+
 }  // namespace
 
 void registerLayout(CLI::App& app) {
   auto* layout = app.add_subcommand(
-      "layout", "Inspect and import layouts (generate and stats come with the layout stage)");
+      "layout", "Generate, import and inspect layouts");
   layout->require_subcommand(1);
   auto* show = layout->add_subcommand(
       "show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
   auto args = std::make_shared<SceneArgs>();
   args->addTo(*show);
   show->callback([args] { showScene(args->load()); });
+
+  auto* gen = layout->add_subcommand(
+      "generate",
+      "Generate furnished apartments: DIR/layout.json (rooms, walls with doors and windows, "
+      "furniture with NYU40 classes, parts and physics), DIR/light.xml and DIR/textures/");
+  auto gen_args = std::make_shared<GenerateLayoutArgs>();
+  gen->add_option("--seed", gen_args->seed, "seed of the apartment (default 0)");
+  gen->add_option("--rooms", gen_args->rooms,
+                  "number of rooms, 1 (studio) .. 16; default: drawn like the paper's Fig. 3");
+  gen->add_option("--count", gen_args->count,
+                  "apartments to make, seeds seed .. seed+count-1, each in OUT/seed_NNNNNN "
+                  "(default 1: OUT itself); a rerun skips finished ones");
+  gen->add_option("--texture-size", gen_args->texture_size,
+                  "texels per side of the procedural textures (power of two, default 256)");
+  gen->add_flag("!--no-daylight", gen_args->daylight, "no sky or sun through the windows");
+  gen->add_option("--out", gen_args->out, "output folder")->required();
+  gen->callback([gen_args] { generateLayouts(*gen_args); });
 
   auto* import = layout->add_subcommand(
       "import",

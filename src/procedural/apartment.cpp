@@ -1,0 +1,1207 @@
+#include "procedural/apartment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "procedural/furniture.h"
+#include "procedural/procedural_textures.h"
+#include "scene/nyu40.h"
+#include "scene/primitives.h"
+
+namespace fs = std::filesystem;
+
+namespace inet {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDoorZone = 1.0;      ///< floor kept clear in front of a doorway (m)
+constexpr double kMaxOccupied = 0.38;  ///< share of a room's floor furniture may cover
+constexpr double kRobotRadius = 0.33;  ///< clearance the builder keeps (checks use 0.25 m)
+constexpr double kGridCell = 0.1;
+
+double uniform(CounterRng& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.uniformDouble();
+}
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+bool known(const std::string& category) {
+  static const std::set<std::string> names(furnitureCategories().begin(),
+                                           furnitureCategories().end());
+  return names.count(category) > 0;
+}
+
+/// 2D box helpers (room coordinates: world x, y).
+using Box2 = Eigen::AlignedBox2d;
+bool overlaps(const Box2& a, const Box2& b, double margin = 0.0) {
+  return a.min().x() < b.max().x() - margin && b.min().x() < a.max().x() - margin &&
+         a.min().y() < b.max().y() - margin && b.min().y() < a.max().y() - margin;
+}
+
+/// A wall of a room interior: 0 = x-min (west), 1 = x-max (east), 2 = y-min (south),
+/// 3 = y-max (north). Yaw that turns a model's back (+y) towards that wall.
+double wallYaw(int side) {
+  switch (side) {
+    case 0:
+      return kPi / 2;  // +y -> -x
+    case 1:
+      return -kPi / 2;  // +y -> +x
+    case 2:
+      return kPi;  // +y -> -y
+    default:
+      return 0.0;
+  }
+}
+
+Mat4 placement(const Vec3& position, double yaw) {
+  Mat4 T = Mat4::Identity();
+  T.block<3, 3>(0, 0) = Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix();
+  T.block<3, 1>(0, 3) = position;
+  return T;
+}
+
+/// World-space axis-aligned box of a model-frame box under a yaw that is a multiple of 90 deg.
+Eigen::AlignedBox3d transformBox(const Eigen::AlignedBox3d& b, const Mat4& T) {
+  Eigen::AlignedBox3d out;
+  for (int k = 0; k < 8; ++k) {
+    Vec3 c = b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
+    out.extend((T * c.homogeneous()).head<3>());
+  }
+  return out;
+}
+
+struct RoomState {
+  int index = -1;
+  Box2 interior;
+  std::vector<Box2> door_zones;
+  std::vector<Box2> window_zones;  ///< strips in front of windows (tall pieces stay out)
+  std::vector<Box2> floor_boxes;   ///< footprints of floor pieces (not rugs)
+  double occupied = 0;
+  std::vector<int> supports;  ///< piece indices with support surfaces
+};
+
+class Builder {
+ public:
+  Builder(const ApartmentOptions& opt, const fs::path& layout_dir, const fs::path& texture_dir)
+      : opt_(opt),
+        rng_(opt.seed, RngStream::Layout, 1, 0, 0),
+        layout_dir_(fs::absolute(layout_dir)),
+        texture_dir_(fs::absolute(texture_dir)) {}
+
+  Apartment build() {
+    CounterRng plan_rng(opt_.seed, RngStream::Layout, 0, 0, 0);
+    const int k = opt_.rooms > 0 ? opt_.rooms : sampleRoomCount(plan_rng);
+    apt_.plan = makeFloorPlan(roomProgram(k, plan_rng), plan_rng);
+    apt_.scene.name = fmt::format("apartment_{}", opt_.seed);
+    const FloorPlan& plan = apt_.plan;
+    for (size_t i = 0; i < plan.rooms.size(); ++i) {
+      Room r;
+      r.id = fmt::format("{}_{}", plan.rooms[i].type, i);
+      r.type = plan.rooms[i].type;
+      const Box2& b = plan.rooms[i].box;
+      const double h = plan.wall_thickness / 2;
+      r.outline = {{b.min().x() + h, b.min().y() + h},
+                   {b.max().x() - h, b.min().y() + h},
+                   {b.max().x() - h, b.max().y() - h},
+                   {b.min().x() + h, b.max().y() - h}};
+      r.floor_z = 0.0;
+      r.ceiling_z = plan.ceiling;
+      apt_.scene.rooms.push_back(r);
+    }
+    shell();
+    for (size_t i = 0; i < plan.rooms.size(); ++i) furnish(static_cast<int>(i));
+    if (opt_.daylight) daylight();
+    apt_.scene.validate(apt_.scene.name);
+    return std::move(apt_);
+  }
+
+ private:
+  // ---- materials and meshes ----
+
+  int material(const MaterialSpec& spec) {
+    auto it = materials_.find(spec.name);
+    if (it != materials_.end()) return it->second;
+    Material m;
+    m.id = spec.name;
+    m.type = spec.type;
+    m.albedo = spec.albedo.cwiseMax(0.f).cwiseMin(1.f);
+    m.roughness = spec.roughness;
+    m.metal = spec.metal;
+    m.ior = spec.ior;
+    m.transmittance = spec.transmittance;
+    m.emission = spec.emission;
+    if (spec.type == MaterialType::Dielectric || spec.type == MaterialType::ThinDielectric)
+      m.albedo = Vec3f::Constant(0.8f);  // not used by glass; keep the default
+    if (spec.texture != TextureKind::None && spec.type != MaterialType::Dielectric &&
+        spec.type != MaterialType::ThinDielectric && !m.isEmissive()) {
+      const TextureSet set =
+          makeTexture(spec.texture, m.albedo, opt_.seed * 0x9e3779b97f4a7c15ull ^ fnv1a(spec.name),
+                      opt_.texture_size);
+      fs::create_directories(texture_dir_);
+      const auto files = writeTexture(set, texture_dir_, spec.name);
+      auto ref = [&](const std::string& path) {
+        TextureRef r;
+        r.path = path;
+        r.file = fs::proximate(path, layout_dir_).generic_string();
+        apt_.texture_files.push_back(path);
+        return r;
+      };
+      // the image carries the colour (its mean is spec.albedo); a translucent material keeps its
+      // plain albedo, since albedo + transmittance must stay <= 1
+      if (!files[0].empty() && m.type != MaterialType::Translucent) {
+        m.albedo = Vec3f::Ones();
+        m.albedo_texture = ref(files[0]);
+      }
+      const bool rough = m.type == MaterialType::Conductor || m.type == MaterialType::Plastic;
+      if (rough && !files[1].empty()) {
+        m.roughness_texture = ref(files[1]);
+        m.roughness = 1.f;  // the image holds the roughness
+      }
+      if (!files[2].empty()) m.normal_texture = ref(files[2]);
+      tile_[spec.name] = spec.texture_scale_m;
+    }
+    apt_.scene.materials.push_back(m);
+    return materials_[spec.name] = static_cast<int>(apt_.scene.materials.size()) - 1;
+  }
+
+  /// A primitive with `scale` baked into its vertices (and texture coordinates in units of
+  /// `tile` metres when tile > 0), shared by every part of that shape. Spheres stay analytic:
+  /// returns -1 for them (the caller keeps the scale in the transform).
+  int mesh(const std::string& primitive, const Vec3& scale, double tile) {
+    if (primitive == "sphere") return -1;
+    const std::string key = fmt::format("{}_{:.4f}x{:.4f}x{:.4f}_t{:.3f}", primitive, scale.x(),
+                                        scale.y(), scale.z(), tile);
+    auto it = meshes_.find(key);
+    if (it != meshes_.end()) return it->second;
+    Mesh m = makePrimitive(primitive, {}, "procedural", "mesh");
+    const Vec3f s = scale.cast<float>();
+    for (Vec3f& p : m.positions) p = p.cwiseProduct(s);
+    for (Vec3f& n : m.normals) n = n.cwiseQuotient(s).normalized();
+    if (tile > 0 && !m.uvs.empty()) {
+      const float t = static_cast<float>(tile);
+      if (primitive == "cylinder") {  // side: around x height; caps: planar
+        const float around = static_cast<float>(kPi * 0.5 * (scale.x() + scale.y()));
+        for (size_t i = 0; i < m.uvs.size(); ++i) {
+          if (std::fabs(m.normals[i].z()) > 0.5f)
+            m.uvs[i] = Vec2f(m.positions[i].x(), m.positions[i].y()) / t;
+          else
+            m.uvs[i] = Vec2f(m.uvs[i].x() * around, m.uvs[i].y() * s.z()) / t;
+        }
+      } else {  // box and quad: quads of 4 vertices, uv (0,0) (1,0) (1,1) (0,1)
+        for (size_t q = 0; q + 3 < m.positions.size(); q += 4) {
+          const float a = (m.positions[q + 1] - m.positions[q]).norm() / t;
+          const float b = (m.positions[q + 3] - m.positions[q]).norm() / t;
+          for (size_t k = 0; k < 4; ++k) m.uvs[q + k] = m.uvs[q + k].cwiseProduct(Vec2f(a, b));
+        }
+      }
+    } else {
+      m.uvs.clear();
+    }
+    m.id = key;
+    m.source = MeshSource();  // inline: the baked scale is part of the geometry
+    apt_.scene.meshes.push_back(std::move(m));
+    return meshes_[key] = static_cast<int>(apt_.scene.meshes.size()) - 1;
+  }
+
+  int sphereMesh() {
+    if (sphere_ < 0) {
+      Mesh m = makePrimitive("sphere", {}, "procedural", "mesh");
+      m.id = "sphere";
+      apt_.scene.meshes.push_back(m);
+      sphere_ = static_cast<int>(apt_.scene.meshes.size()) - 1;
+    }
+    return sphere_;
+  }
+
+  // ---- pieces ----
+
+  /// Adds every part of `model` placed by T_world_model; returns the piece index.
+  int add(const FurnitureModel& model, const Mat4& T_world_model, int room, bool on_floor) {
+    const std::string name = fmt::format("{}_{}", model.category, ++count_[model.category]);
+    const int instance = ++instances_;
+    PhysicsProps phys;
+    phys.mass_kg = static_cast<float>(model.mass_kg);
+    phys.friction = static_cast<float>(model.friction);
+    phys.movable = model.movable;
+    for (const FurniturePart& part : model.parts) {
+      const MaterialSpec& spec = model.materials[part.material];
+      const int mat = material(spec);
+      auto tile = tile_.find(spec.name);
+      const Mat4 T = T_world_model * part.T_model_part;
+      Object o;
+      o.name = name;
+      o.kind = model.category;
+      o.part = part.name;
+      o.room = room;
+      o.physics = phys;
+      o.material = mat;
+      o.nyu40 = part.nyu40 > 0 ? part.nyu40 : model.nyu40;
+      o.instance = instance;
+      const Mat3 L = T.block<3, 3>(0, 0);
+      const Vec3 scale(L.col(0).norm(), L.col(1).norm(), L.col(2).norm());
+      const int mi = mesh(part.primitive, scale, tile == tile_.end() ? 0.0 : tile->second);
+      if (mi < 0) {
+        o.mesh = sphereMesh();
+        o.T_world_object = T;
+      } else {
+        o.mesh = mi;
+        o.T_world_object = T;
+        o.T_world_object.block<3, 3>(0, 0) = L * scale.cwiseInverse().asDiagonal();
+      }
+      apt_.scene.objects.push_back(o);
+    }
+    if (model.light) {
+      const LightSpec& ls = *model.light;
+      Light l;
+      l.name = name + "_light";
+      l.type = ls.type;
+      l.position = (T_world_model * ls.position.homogeneous()).head<3>();
+      l.direction = (T_world_model.block<3, 3>(0, 0) * ls.direction).normalized();
+      l.intensity = ls.intensity_w_sr;
+      l.temperature_k = ls.temperature_k;
+      l.cone_deg = ls.cone_deg;
+      l.falloff_deg = std::min(l.falloff_deg, l.cone_deg);
+      l.max_distance = ls.max_distance;
+      l.object = name;
+      apt_.scene.lights.push_back(l);
+    }
+    PlacedPiece p;
+    p.name = name;
+    p.category = model.category;
+    p.room = room;
+    p.instance = instance;
+    for (const auto& h : model.hulls) p.hulls.push_back(transformBox(h, T_world_model));
+    p.on_floor = on_floor;
+    p.flat = model.category == "rug";
+    apt_.pieces.push_back(p);
+    return static_cast<int>(apt_.pieces.size()) - 1;
+  }
+
+  /// Removes the last piece (its objects and light), restoring the counters.
+  void undo(size_t objects_before, size_t lights_before) {
+    apt_.scene.objects.resize(objects_before);
+    apt_.scene.lights.resize(lights_before);
+    --count_[apt_.pieces.back().category];
+    --instances_;
+    apt_.pieces.pop_back();
+  }
+
+  // ---- the shell: walls with openings, floors, ceilings, skirting, front door, windows ----
+
+  MaterialSpec plain(const std::string& name, Vec3f albedo, TextureKind tex, float tile,
+                     MaterialType type = MaterialType::Lambertian, float roughness = 0.6f) {
+    MaterialSpec s;
+    s.name = name;
+    s.type = type;
+    s.albedo = albedo;
+    s.texture = tex;
+    s.texture_scale_m = tile;
+    s.roughness = roughness;
+    return s;
+  }
+
+  void box(const std::string& name, const std::string& kind, int nyu40, int room,
+           const MaterialSpec& spec, const Vec3& lo, const Vec3& hi) {
+    if ((hi - lo).minCoeff() <= 1e-4) return;
+    FurnitureModel m;
+    m.category = kind;
+    m.nyu40 = nyu40;
+    m.materials = {spec};
+    FurniturePart part;
+    part.name = name;
+    part.primitive = "box";
+    part.T_model_part = Mat4::Identity();
+    part.T_model_part.diagonal().head<3>() = hi - lo;
+    part.T_model_part.block<3, 1>(0, 3) = 0.5 * (lo + hi);
+    m.parts = {part};
+    m.hulls = {Eigen::AlignedBox3d(lo, hi)};
+    m.mass_kg = 45;
+    m.friction = 0.2;
+    m.movable = false;
+    add(m, Mat4::Identity(), room, false);
+  }
+
+  void shell() {
+    const FloorPlan& plan = apt_.plan;
+    const double t = plan.wall_thickness, H = plan.ceiling;
+    const float paint = static_cast<float>(uniform(rng_, 0.55, 0.8));
+    const MaterialSpec wall =
+        plain("wall_paint",
+              Vec3f(paint, paint * static_cast<float>(uniform(rng_, 0.95, 1.0)),
+                    paint * static_cast<float>(uniform(rng_, 0.85, 0.98))),
+              TextureKind::Plaster, 1.5f);
+    const MaterialSpec ceiling =
+        plain("ceiling_white", Vec3f(0.8f, 0.8f, 0.8f), TextureKind::None, 1.f);
+    const MaterialSpec skirting = plain("skirting_white", Vec3f(0.75f, 0.75f, 0.72f),
+                                        TextureKind::None, 1.f, MaterialType::Plastic, 0.4f);
+    // walls: the union of room sides per line, cut at doors and windows
+    struct Line {
+      bool vertical;
+      double at;
+      std::vector<std::pair<double, double>> spans;
+    };
+    std::vector<Line> lines;
+    auto addSpan = [&](bool vertical, double at, double lo, double hi) {
+      for (Line& l : lines)
+        if (l.vertical == vertical && std::fabs(l.at - at) < 1e-9) {
+          l.spans.push_back({lo, hi});
+          return;
+        }
+      lines.push_back({vertical, at, {{lo, hi}}});
+    };
+    for (const PlanRoom& r : plan.rooms) {
+      addSpan(true, r.box.min().x(), r.box.min().y(), r.box.max().y());
+      addSpan(true, r.box.max().x(), r.box.min().y(), r.box.max().y());
+      addSpan(false, r.box.min().y(), r.box.min().x(), r.box.max().x());
+      addSpan(false, r.box.max().y(), r.box.min().x(), r.box.max().x());
+    }
+    for (Line& l : lines) {
+      std::sort(l.spans.begin(), l.spans.end());
+      std::vector<std::pair<double, double>> merged;
+      for (auto s : l.spans) {
+        if (!merged.empty() && s.first <= merged.back().second + 1e-9)
+          merged.back().second = std::max(merged.back().second, s.second);
+        else
+          merged.push_back(s);
+      }
+      for (auto [lo, hi] : merged) {
+        // openings on this stretch: (from, to, bottom, top)
+        std::vector<std::array<double, 4>> holes;
+        for (const PlanDoor& d : plan.doors)
+          if (d.vertical == l.vertical && std::fabs(d.line - l.at) < 1e-9 && d.from >= lo &&
+              d.to <= hi)
+            holes.push_back({d.from, d.to, 0.0, d.height});
+        for (const PlanWindow& w : plan.windows)
+          if (w.vertical == l.vertical && std::fabs(w.line - l.at) < 1e-9 && w.from >= lo &&
+              w.to <= hi)
+            holes.push_back({w.from, w.to, w.sill, w.top});
+        std::sort(holes.begin(), holes.end());
+        auto piece = [&](double a, double b, double z0, double z1) {
+          const Vec3 lo3 = l.vertical ? Vec3(l.at - t / 2, a, z0) : Vec3(a, l.at - t / 2, z0);
+          const Vec3 hi3 = l.vertical ? Vec3(l.at + t / 2, b, z1) : Vec3(b, l.at + t / 2, z1);
+          box("wall", "wall", 1, -1, wall, lo3, hi3);
+        };
+        double cursor = lo - t / 2;  // close the corners
+        for (const auto& h : holes) {
+          piece(cursor, h[0], 0, H);
+          if (h[2] > 0) piece(h[0], h[1], 0, h[2]);
+          piece(h[0], h[1], h[3], H);
+          cursor = h[1];
+        }
+        piece(cursor, hi + t / 2, 0, H);
+      }
+    }
+    for (size_t i = 0; i < plan.rooms.size(); ++i) {
+      const PlanRoom& r = plan.rooms[i];
+      const std::string& type = r.type;
+      const bool wet = type == "kitchen" || type == "bathroom" || type == "master_bathroom" ||
+                       type == "laundry" || type == "balcony" || type == "storage";
+      const bool carpet = type == "kids_room" || type == "elderly_room";
+      MaterialSpec floor;
+      if (wet) {
+        const float g = static_cast<float>(uniform(rng_, 0.35, 0.75));
+        floor = plain(fmt::format("floor_tiles_{}", i % 3), Vec3f(g, g * 0.97f, g * 0.92f),
+                      TextureKind::Tiles, 1.2f, MaterialType::Plastic, 0.3f);
+      } else if (carpet) {
+        floor = plain("floor_carpet", Vec3f(0.35f, 0.3f, 0.28f), TextureKind::Carpet, 1.f);
+      } else {
+        floor = plain("floor_wood", Vec3f(0.38f, 0.24f, 0.13f), TextureKind::Wood, 1.5f,
+                      MaterialType::Plastic, 0.45f);
+      }
+      const Vec3 lo(r.box.min().x(), r.box.min().y(), -0.05),
+          hi(r.box.max().x(), r.box.max().y(), 0);
+      box("floor", "floor", 2, static_cast<int>(i), floor, lo, hi);
+      box("ceiling", "ceiling", 22, static_cast<int>(i), ceiling,
+          Vec3(r.box.min().x(), r.box.min().y(), plan.ceiling),
+          Vec3(r.box.max().x(), r.box.max().y(), plan.ceiling + 0.05));
+      // skirting along the interior faces, cut at doors
+      const Box2 in(r.box.min() + Eigen::Vector2d::Constant(t / 2),
+                    r.box.max() - Eigen::Vector2d::Constant(t / 2));
+      for (int side = 0; side < 4; ++side) {
+        const bool vertical = side < 2;
+        const double line = side == 0   ? r.box.min().x()
+                            : side == 1 ? r.box.max().x()
+                            : side == 2 ? r.box.min().y()
+                                        : r.box.max().y();
+        std::vector<std::pair<double, double>> spans = {
+            {vertical ? in.min().y() : in.min().x(), vertical ? in.max().y() : in.max().x()}};
+        for (const PlanDoor& d : plan.doors) {
+          if (d.vertical != vertical || std::fabs(d.line - line) > 1e-9) continue;
+          std::vector<std::pair<double, double>> next;
+          for (auto [a, b] : spans) {
+            if (d.to <= a || d.from >= b) {
+              next.push_back({a, b});
+              continue;
+            }
+            if (d.from > a) next.push_back({a, d.from});
+            if (d.to < b) next.push_back({d.to, b});
+          }
+          spans = std::move(next);
+        }
+        const double inner = side == 0   ? in.min().x()
+                             : side == 1 ? in.max().x()
+                             : side == 2 ? in.min().y()
+                                         : in.max().y();
+        const double depth = (side % 2 == 0) ? 0.012 : -0.012;
+        for (auto [a, b] : spans) {
+          if (b - a < 0.05) continue;
+          const double c0 = std::min(inner, inner + depth), c1 = std::max(inner, inner + depth);
+          const Vec3 lo3 = vertical ? Vec3(c0, a, 0) : Vec3(a, c0, 0);
+          const Vec3 hi3 = vertical ? Vec3(c1, b, 0.08) : Vec3(b, c1, 0.08);
+          box("skirting", "skirting", 1, static_cast<int>(i), skirting, lo3, hi3);
+        }
+      }
+    }
+    // front door (closed) and windows, fitted to their openings
+    for (const PlanDoor& d : plan.doors) {
+      if (d.b >= 0 || !known("door")) continue;
+      FurnitureSizeHint hint;
+      hint.width = d.to - d.from - 0.02;
+      hint.height = d.height - 0.01;
+      FurnitureModel m = makeFurnitureSized("door", hint, rng_);
+      inWall(m, d.vertical, d.line, 0.5 * (d.from + d.to), 0.0, d.a);
+    }
+    for (const PlanWindow& w : plan.windows) {
+      if (!known("window")) continue;
+      FurnitureSizeHint hint;
+      hint.width = w.to - w.from - 0.02;
+      hint.height = w.top - w.sill - 0.02;
+      FurnitureModel m = makeFurnitureSized("window", hint, rng_);
+      inWall(m, w.vertical, w.line, 0.5 * (w.from + w.to), w.sill + 0.01, w.room);
+    }
+  }
+
+  /// Places an InWall model centred in a wall opening, its front towards room `room`.
+  void inWall(const FurnitureModel& m, bool vertical, double line, double centre, double z,
+              int room) {
+    const Box2& rb = apt_.plan.rooms[room].box;
+    // which side of the line the room is on decides the yaw (front = -y faces the room)
+    int side;
+    if (vertical)
+      side = std::fabs(line - rb.min().x()) < 1e-9 ? 0 : 1;
+    else
+      side = std::fabs(line - rb.min().y()) < 1e-9 ? 2 : 3;
+    const Vec3 pos = vertical ? Vec3(line, centre, z) : Vec3(centre, line, z);
+    add(m, placement(pos, wallYaw(side)), room, false);
+  }
+
+  // ---- furnishing ----
+
+  RoomState roomState(int i) {
+    const FloorPlan& plan = apt_.plan;
+    const double t = plan.wall_thickness / 2 + 0.015;  // + skirting
+    RoomState s;
+    s.index = i;
+    const Box2& b = plan.rooms[i].box;
+    s.interior =
+        Box2(b.min() + Eigen::Vector2d::Constant(t), b.max() - Eigen::Vector2d::Constant(t));
+    auto zone = [&](bool vertical, double line, double from, double to, double depth) {
+      Box2 z;
+      if (vertical) {
+        const double dir = std::fabs(line - b.min().x()) < 1e-9 ? 1 : -1;
+        z.extend(Eigen::Vector2d(line, from));
+        z.extend(Eigen::Vector2d(line + dir * depth, to));
+      } else {
+        const double dir = std::fabs(line - b.min().y()) < 1e-9 ? 1 : -1;
+        z.extend(Eigen::Vector2d(from, line));
+        z.extend(Eigen::Vector2d(to, line + dir * depth));
+      }
+      return z;
+    };
+    for (const PlanDoor& d : plan.doors)
+      if (d.a == i || d.b == i)
+        s.door_zones.push_back(zone(d.vertical, d.line, d.from - 0.15, d.to + 0.15, kDoorZone));
+    for (const PlanWindow& w : plan.windows)
+      if (w.room == i) s.window_zones.push_back(zone(w.vertical, w.line, w.from, w.to, 0.45));
+    return s;
+  }
+
+  /// Footprint of a model of size (w, d) placed at `c` with a multiple-of-90 yaw.
+  static Box2 footprint(const Eigen::Vector2d& c, double w, double d, double yaw) {
+    const bool turned = std::fabs(std::sin(yaw)) > 0.5;
+    const Eigen::Vector2d half =
+        turned ? Eigen::Vector2d(d / 2, w / 2) : Eigen::Vector2d(w / 2, d / 2);
+    return Box2(c - half, c + half);
+  }
+
+  bool floorFree(const RoomState& s, const Box2& fp, double height, bool flat) const {
+    const double eps = 0.005;
+    if (fp.min().x() < s.interior.min().x() - eps || fp.min().y() < s.interior.min().y() - eps ||
+        fp.max().x() > s.interior.max().x() + eps || fp.max().y() > s.interior.max().y() + eps)
+      return false;
+    if (flat) return true;
+    for (const Box2& z : s.door_zones)
+      if (overlaps(fp, z)) return false;
+    for (const Box2& o : s.floor_boxes)
+      if (overlaps(fp, o, -0.02)) return false;  // 2 cm gap at least
+    if (height > 0.85)
+      for (const Box2& z : s.window_zones)
+        if (overlaps(fp, z)) return false;
+    return true;
+  }
+
+  /// Keeps the piece when the room's doors stay connected through free floor; else undoes it.
+  bool commitFloor(RoomState& s, const Box2& fp, bool flat, size_t objects_before,
+                   size_t lights_before) {
+    if (!flat) {
+      s.floor_boxes.push_back(fp);
+      if (!doorsConnected(s)) {
+        s.floor_boxes.pop_back();
+        undo(objects_before, lights_before);
+        return false;
+      }
+      s.occupied += fp.volume();
+    }
+    return true;
+  }
+
+  /// Are all door zones of the room connected through free grid cells (robot radius)?
+  bool doorsConnected(const RoomState& s) const {
+    const Box2& in = s.interior;
+    const int nx = std::max(1, static_cast<int>(in.sizes().x() / kGridCell));
+    const int ny = std::max(1, static_cast<int>(in.sizes().y() / kGridCell));
+    std::vector<uint8_t> free(static_cast<size_t>(nx) * ny, 1);
+    auto centre = [&](int x, int y) {
+      return Eigen::Vector2d(in.min().x() + (x + 0.5) * kGridCell,
+                             in.min().y() + (y + 0.5) * kGridCell);
+    };
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        const Eigen::Vector2d c = centre(x, y);
+        for (const Box2& b : s.floor_boxes) {
+          const Box2 grown(b.min() - Eigen::Vector2d::Constant(kRobotRadius),
+                           b.max() + Eigen::Vector2d::Constant(kRobotRadius));
+          if (grown.contains(c)) free[y * nx + x] = 0;
+        }
+      }
+    // seed cells: the free cells inside each door zone
+    std::vector<std::vector<int>> seeds;
+    for (const Box2& z : s.door_zones) {
+      std::vector<int> cells;
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x)
+          if (free[y * nx + x] && z.contains(centre(x, y))) cells.push_back(y * nx + x);
+      if (cells.empty()) return false;
+      seeds.push_back(cells);
+    }
+    if (seeds.size() < 1) return true;
+    std::vector<uint8_t> seen(free.size(), 0);
+    std::queue<int> q;
+    for (int c : seeds[0]) {
+      seen[c] = 1;
+      q.push(c);
+    }
+    while (!q.empty()) {
+      const int c = q.front();
+      q.pop();
+      const int x = c % nx, y = c / nx;
+      const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+      for (const auto& n : nb) {
+        if (n[0] < 0 || n[1] < 0 || n[0] >= nx || n[1] >= ny) continue;
+        const int k = n[1] * nx + n[0];
+        if (free[k] && !seen[k]) {
+          seen[k] = 1;
+          q.push(k);
+        }
+      }
+    }
+    for (size_t z = 1; z < seeds.size(); ++z)
+      if (std::none_of(seeds[z].begin(), seeds[z].end(), [&](int c) { return seen[c]; }))
+        return false;
+    return true;
+  }
+
+  /// Tries to stand `category` against a wall (sides in `sides`, or all); returns the piece
+  /// index or -1. `along` fixes the position along the wall when >= 0 (0..1 of the free span).
+  int againstWall(RoomState& s, const std::string& category, std::vector<int> sides = {},
+                  const FurnitureSizeHint& hint = {}) {
+    if (!known(category)) return -1;
+    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
+    const double w = m.size.x(), d = m.size.y(), h = m.size.z();
+    if (s.occupied + w * d > kMaxOccupied * s.interior.volume()) return -1;
+    if (sides.empty()) sides = {0, 1, 2, 3};
+    // random order of sides and positions, deterministic in the RNG
+    for (size_t i = sides.size(); i > 1; --i)
+      std::swap(sides[i - 1], sides[static_cast<size_t>(rng_.uniform() * i)]);
+    const Box2& in = s.interior;
+    for (int side : sides) {
+      const bool vertical = side < 2;
+      const double lo = vertical ? in.min().y() : in.min().x();
+      const double hi = vertical ? in.max().y() : in.max().x();
+      const int steps = std::max(1, static_cast<int>((hi - lo - w) / 0.1));
+      const int start = static_cast<int>(rng_.uniform() * steps);
+      for (int k = 0; k <= steps; ++k) {
+        const double u = lo + w / 2 + ((start + k) % (steps + 1)) * 0.1;
+        if (u + w / 2 > hi + 1e-9) continue;
+        const double yaw = wallYaw(side);
+        Eigen::Vector2d c;
+        if (side == 0) c = {in.min().x() + d / 2, u};
+        if (side == 1) c = {in.max().x() - d / 2, u};
+        if (side == 2) c = {u, in.min().y() + d / 2};
+        if (side == 3) c = {u, in.max().y() - d / 2};
+        const Box2 fp = footprint(c, w, d, yaw);
+        if (!floorFree(s, fp, h, false) ||
+            hullsPenetrate(m, placement(Vec3(c.x(), c.y(), 0), yaw), s.index))
+          continue;
+        const size_t ob = apt_.scene.objects.size(), lb = apt_.scene.lights.size();
+        const int piece = add(m, placement(Vec3(c.x(), c.y(), 0), yaw), s.index, true);
+        if (!commitFloor(s, fp, false, ob, lb)) continue;
+        if (m.is_support) s.supports.push_back(piece);
+        wall_side_[piece] = side;
+        models_[piece] = m;
+        return piece;
+      }
+    }
+    return -1;
+  }
+
+  /// Places `category` at `c` with `yaw` if the floor is free there.
+  int at(RoomState& s, const std::string& category, const Eigen::Vector2d& c, double yaw,
+         const FurnitureSizeHint& hint = {}) {
+    if (!known(category)) return -1;
+    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
+    const bool flat = category == "rug";
+    const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
+    if (!flat && s.occupied + fp.volume() > kMaxOccupied * s.interior.volume()) return -1;
+    if (!floorFree(s, fp, m.size.z(), flat)) return -1;
+    if (!flat && hullsPenetrate(m, placement(Vec3(c.x(), c.y(), 0), yaw), s.index)) return -1;
+    const size_t ob = apt_.scene.objects.size(), lb = apt_.scene.lights.size();
+    const int piece = add(m, placement(Vec3(c.x(), c.y(), 0), yaw), s.index, true);
+    if (!commitFloor(s, fp, flat, ob, lb)) return -1;
+    if (m.is_support) s.supports.push_back(piece);
+    models_[piece] = m;
+    yaw_[piece] = yaw;
+    return piece;
+  }
+
+  Box2 footprintOf(int piece) const {
+    Box2 b;
+    for (const auto& h : apt_.pieces[piece].hulls)
+      b.extend(Box2(h.min().head<2>(), h.max().head<2>()));
+    return b;
+  }
+
+  /// In front of `piece` (its front = -y of its model frame) at `gap` metres, facing it when
+  /// `facing`, else facing the same way.
+  int inFront(RoomState& s, int piece, const std::string& category, double gap, bool facing) {
+    if (piece < 0 || !known(category)) return -1;
+    const double yaw = pieceYaw(piece);
+    const Eigen::Vector2d front(std::sin(yaw), -std::cos(yaw));  // model -y in world
+    FurnitureModel m = makeFurniture(category, rng_);
+    const Box2 fp = footprintOf(piece);
+    const double depth = std::fabs(front.x()) > 0.5 ? fp.sizes().x() : fp.sizes().y();
+    const Eigen::Vector2d c = fp.center() + front * (depth / 2 + gap + m.size.y() / 2);
+    return at(s, category, c, facing ? yaw + kPi : yaw);
+  }
+
+  /// Beside `piece` along its wall, left (-1) or right (+1), with a small gap.
+  int beside(RoomState& s, int piece, const std::string& category, int dir) {
+    if (piece < 0 || !known(category)) return -1;
+    const double yaw = pieceYaw(piece);
+    const Eigen::Vector2d right(std::cos(yaw), std::sin(yaw));  // model +x in world
+    FurnitureModel m = makeFurniture(category, rng_);
+    const Box2 fp = footprintOf(piece);
+    const double width = std::fabs(right.x()) > 0.5 ? fp.sizes().x() : fp.sizes().y();
+    const double depth = std::fabs(right.x()) > 0.5 ? fp.sizes().y() : fp.sizes().x();
+    const Eigen::Vector2d back(-std::sin(yaw), std::cos(yaw));  // model +y: towards the wall
+    const Eigen::Vector2d c = fp.center() + right * dir * (width / 2 + 0.05 + m.size.x() / 2) +
+                              back * (depth / 2 - m.size.y() / 2);
+    return at(s, category, c, yaw);
+  }
+
+  double pieceYaw(int piece) const {
+    auto it = wall_side_.find(piece);
+    if (it != wall_side_.end()) return wallYaw(it->second);
+    auto jt = yaw_.find(piece);
+    return jt == yaw_.end() ? 0.0 : jt->second;
+  }
+
+  /// Does world box `b` sink more than 5 mm into any solid piece of room `room`?
+  bool penetrates(const Eigen::AlignedBox3d& b, int room) const {
+    for (const PlacedPiece& p : apt_.pieces) {
+      if (p.room != room || p.flat) continue;
+      for (const auto& h : p.hulls) {
+        const Eigen::AlignedBox3d i = b.intersection(h);
+        if (!i.isEmpty() && i.sizes().minCoeff() > 0.005) return true;
+      }
+    }
+    return false;
+  }
+
+  /// Would `m` placed by T sink into a solid piece of the room (wall-mounted ones included)?
+  bool hullsPenetrate(const FurnitureModel& m, const Mat4& T, int room) const {
+    for (const auto& h : m.hulls)
+      if (penetrates(transformBox(h, T), room)) return true;
+    return false;
+  }
+
+  /// A small item on a support piece's top (or a given support level), if there is room.
+  int onSurface(int support, const std::string& category, int level = -1) {
+    if (support < 0 || !known(category) || !models_.count(support)) return -1;
+    const FurnitureModel& sm = models_.at(support);
+    if (!sm.is_support || sm.support_heights.empty()) return -1;
+    FurnitureModel m = makeFurniture(category, rng_);
+    const double z =
+        level < 0 ? sm.support_heights.back()
+                  : sm.support_heights[std::min<size_t>(level, sm.support_heights.size() - 1)];
+    const Box2 top = footprintOf(support);
+    const double margin = 0.03;
+    const double yaw = pieceYaw(support) + (rng_.uniform() < 0.5f ? 0.0 : kPi / 2);
+    for (int tries = 0; tries < 12; ++tries) {
+      const Eigen::Vector2d half =
+          footprint(Eigen::Vector2d::Zero(), m.size.x(), m.size.y(), yaw).max();
+      const Eigen::Vector2d lo = top.min() + half + Eigen::Vector2d::Constant(margin);
+      const Eigen::Vector2d hi = top.max() - half - Eigen::Vector2d::Constant(margin);
+      if ((hi - lo).minCoeff() < 0) return -1;
+      const Eigen::Vector2d c(uniform(rng_, lo.x(), hi.x()), uniform(rng_, lo.y(), hi.y()));
+      const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
+      bool clash = false;
+      for (const Box2& o : on_support_[support]) clash = clash || overlaps(fp, o, -0.01);
+      const int room = apt_.pieces[support].room;
+      // in 3D too: a cushion must not sink into the sofa's back or arms
+      const Mat4 T = placement(Vec3(c.x(), c.y(), z + 0.001), yaw);
+      for (const auto& h : m.hulls) clash = clash || penetrates(transformBox(h, T), room);
+      if (clash) continue;
+      const int piece = add(m, T, room, false);
+      on_support_[support].push_back(fp);
+      models_[piece] = m;
+      yaw_[piece] = yaw;
+      return piece;
+    }
+    return -1;
+  }
+
+  /// A wall-mounted item (picture, mirror, upper cabinet) centred above `below` (a piece whose
+  /// wall it shares) or on a free stretch of wall.
+  int onWall(RoomState& s, const std::string& category, int below = -1, double height = -1) {
+    if (!known(category)) return -1;
+    FurnitureModel m = makeFurniture(category, rng_);
+    const double z = height >= 0 ? height : m.mount_height;
+    const Box2& in = s.interior;
+    std::vector<int> sides = {0, 1, 2, 3};
+    if (below >= 0 && wall_side_.count(below)) sides = {wall_side_.at(below)};
+    for (int side : sides) {
+      const bool vertical = side < 2;
+      double u;
+      if (below >= 0 && wall_side_.count(below)) {
+        const Eigen::Vector2d c = footprintOf(below).center();
+        u = vertical ? c.y() : c.x();
+      } else {
+        const double lo = vertical ? in.min().y() : in.min().x();
+        const double hi = vertical ? in.max().y() : in.max().x();
+        if (hi - lo < m.size.x() + 0.2) continue;
+        u = uniform(rng_, lo + m.size.x() / 2 + 0.1, hi - m.size.x() / 2 - 0.1);
+      }
+      const double d = m.size.y();
+      Eigen::Vector2d c;
+      if (side == 0) c = {in.min().x() + d / 2, u};
+      if (side == 1) c = {in.max().x() - d / 2, u};
+      if (side == 2) c = {u, in.min().y() + d / 2};
+      if (side == 3) c = {u, in.max().y() - d / 2};
+      const Box2 fp = footprint(c, m.size.x(), d, wallYaw(side));
+      // clear of doors, windows and of whatever stands below it higher than its bottom
+      bool clash = fp.min().x() < in.min().x() - 1e-3 || fp.max().x() > in.max().x() + 1e-3 ||
+                   fp.min().y() < in.min().y() - 1e-3 || fp.max().y() > in.max().y() + 1e-3;
+      for (const Box2& zbox : s.door_zones) clash = clash || overlaps(fp, zbox);
+      for (const Box2& zbox : s.window_zones) clash = clash || overlaps(fp, zbox);
+      const Eigen::AlignedBox3d me(Vec3(fp.min().x(), fp.min().y(), z),
+                                   Vec3(fp.max().x(), fp.max().y(), z + m.size.z()));
+      for (const PlacedPiece& p : apt_.pieces) {
+        if (p.room != s.index) continue;
+        for (const auto& h : p.hulls) {
+          const auto o = me.intersection(h);
+          clash = clash || (!o.isEmpty() && o.sizes().minCoeff() > 0.005);
+        }
+      }
+      if (z + m.size.z() > apt_.plan.ceiling - 0.05) clash = true;
+      if (clash) continue;
+      const int piece = add(m, placement(Vec3(c.x(), c.y(), z), wallYaw(side)), s.index, false);
+      wall_side_[piece] = side;
+      models_[piece] = m;
+      return piece;
+    }
+    return -1;
+  }
+
+  void ceilingLight(RoomState& s) {
+    const std::string cat = known("ceiling_light") ? "ceiling_light" : "pendant_light";
+    if (!known(cat)) return;
+    FurnitureModel m = makeFurniture(cat, rng_);
+    const Eigen::Vector2d c = s.interior.center();
+    const double z = apt_.plan.ceiling - m.size.z();
+    add(m, placement(Vec3(c.x(), c.y(), z), 0.0), s.index, false);
+  }
+
+  void curtains(RoomState& s) {
+    if (!known("curtain")) return;
+    const FloorPlan& plan = apt_.plan;
+    for (const PlanWindow& w : plan.windows) {
+      if (w.room != s.index) continue;
+      FurnitureSizeHint hint;
+      hint.width = std::min(w.to - w.from + 0.4, 3.0);
+      hint.height = std::max(0.5, std::min(plan.ceiling - 0.15, w.top + 0.1) - 0.05);
+      FurnitureModel m = makeFurnitureSized("curtain", hint, rng_);
+      const Box2& in = s.interior;
+      const Box2& rb = plan.rooms[s.index].box;
+      int side;
+      if (w.vertical)
+        side = std::fabs(w.line - rb.min().x()) < 1e-9 ? 0 : 1;
+      else
+        side = std::fabs(w.line - rb.min().y()) < 1e-9 ? 2 : 3;
+      const double centre = std::clamp(0.5 * (w.from + w.to),
+                                       (w.vertical ? in.min().y() : in.min().x()) + m.size.x() / 2,
+                                       (w.vertical ? in.max().y() : in.max().x()) - m.size.x() / 2);
+      const double d = m.size.y();
+      Eigen::Vector2d c;
+      if (side == 0) c = {in.min().x() + d / 2, centre};
+      if (side == 1) c = {in.max().x() - d / 2, centre};
+      if (side == 2) c = {centre, in.min().y() + d / 2};
+      if (side == 3) c = {centre, in.max().y() - d / 2};
+      const double z = std::max(0.02, std::min(plan.ceiling - 0.05, w.top + 0.15) - m.size.z());
+      const Mat4 T = placement(Vec3(c.x(), c.y(), z), wallYaw(side));
+      bool clash = false;
+      for (const auto& h : m.hulls) clash = clash || penetrates(transformBox(h, T), s.index);
+      if (clash) continue;
+      add(m, T, s.index, false);
+      // it hangs down to the floor: floor pieces keep out of its footprint
+      s.floor_boxes.push_back(footprint(c, m.size.x(), m.size.y(), wallYaw(side)));
+    }
+  }
+
+  void clutter(RoomState& s, int count, std::initializer_list<const char*> items) {
+    if (s.supports.empty()) return;
+    std::vector<std::string> list(items.begin(), items.end());
+    for (int k = 0; k < count; ++k) {
+      const int support = s.supports[static_cast<size_t>(rng_.uniform() * s.supports.size())];
+      onSurface(support, list[static_cast<size_t>(rng_.uniform() * list.size())]);
+    }
+  }
+
+  void furnish(int i) {
+    RoomState s = roomState(i);
+    const std::string& type = apt_.plan.rooms[i].type;
+    const bool studio = apt_.plan.rooms.size() == 1;
+    auto longWalls = [&]() {
+      const Eigen::Vector2d sz = s.interior.sizes();
+      return sz.x() >= sz.y() ? std::vector<int>{2, 3} : std::vector<int>{0, 1};
+    };
+    auto opposite = [](int side) { return side ^ 1; };
+    if (type == "living_room") {
+      curtains(s);
+      if (rng_.uniform() < 0.7f) at(s, "rug", s.interior.center(), 0.0);
+      const int sofa = againstWall(s, "sofa", longWalls());
+      const int table = inFront(s, sofa, "coffee_table", 0.4, false);
+      if (sofa >= 0) {
+        const int stand = againstWall(s, "tv_stand", {opposite(wall_side_[sofa])});
+        onSurface(stand, "television");
+        onWall(s, "picture", sofa);
+        onSurface(sofa, "cushion");
+        onSurface(sofa, "cushion");
+      }
+      onSurface(table, "vase");
+      onSurface(table, "books");
+      if (rng_.uniform() < 0.7f) againstWall(s, "armchair");
+      if (rng_.uniform() < 0.7f) {
+        const int shelf = againstWall(s, "bookshelf");
+        for (int k = 0; k < 3; ++k) onSurface(shelf, "books", k);
+      }
+      if (rng_.uniform() < 0.6f) againstWall(s, "floor_lamp");
+      if (rng_.uniform() < 0.6f) againstWall(s, "potted_plant");
+      if (studio) {
+        const int bed = againstWall(s, "bed_double");
+        beside(s, bed, "nightstand", 1);
+        againstWall(s, "kitchen_counter");
+        againstWall(s, "refrigerator");
+      }
+    } else if (type == "dining_room") {
+      const int table =
+          at(s, "dining_table", s.interior.center(), rng_.uniform() < 0.5f ? 0 : kPi / 2);
+      if (table >= 0) {
+        for (int k = 0; k < 6; ++k) chairAround(s, table, k);
+        onSurface(table, "vase");
+        onSurface(table, "bowl");
+      }
+      againstWall(s, "cabinet");
+      onWall(s, "picture");
+    } else if (type == "kitchen") {
+      const std::vector<int> wall = longWalls();
+      const int sink = againstWall(s, "kitchen_sink_counter", wall);
+      int side = sink >= 0 ? wall_side_[sink] : wall[0];
+      for (int k = 0; k < 3; ++k) {
+        const int c = againstWall(s, "kitchen_counter", {side});
+        if (c >= 0) onWall(s, "upper_cabinet", c, 1.45);
+      }
+      againstWall(s, "stove", {side});
+      againstWall(s, "refrigerator");
+      clutter(s, 4, {"bowl", "mug", "vase", "box"});
+      if (s.interior.volume() > 9.0) {
+        const int t = at(s, "dining_table", s.interior.center(), 0.0);
+        if (t >= 0)
+          for (int k = 0; k < 2; ++k) chairAround(s, t, k);
+      }
+    } else if (type == "master_bedroom" || type == "second_bedroom" || type == "elderly_room" ||
+               type == "kids_room") {
+      const bool big = type == "master_bedroom" || type == "elderly_room";
+      curtains(s);
+      const int bed = againstWall(s, big ? "bed_double" : "bed_single");
+      const int left = beside(s, bed, "nightstand", -1);
+      const int right = big ? beside(s, bed, "nightstand", 1) : -1;
+      onSurface(left, "table_lamp");
+      onSurface(right, "table_lamp");
+      onSurface(bed, "pillow");
+      if (big) onSurface(bed, "pillow");
+      onWall(s, "picture", bed);
+      againstWall(s, "wardrobe");
+      if (type == "kids_room") {
+        const int desk = againstWall(s, "desk");
+        inFront(s, desk, "office_chair", 0.0, true);
+        const int shelf = againstWall(s, "bookshelf");
+        onSurface(shelf, "books", 1);
+        onSurface(shelf, "box", 0);
+        at(s, "rug", s.interior.center(), 0.0);
+      } else if (rng_.uniform() < 0.6f) {
+        const int dresser = againstWall(s, "dresser");
+        onSurface(dresser, "clothes");
+        onSurface(dresser, "vase");
+      }
+    } else if (type == "study") {
+      curtains(s);
+      const int desk = againstWall(s, "desk");
+      inFront(s, desk, "office_chair", 0.0, true);
+      onSurface(desk, rng_.uniform() < 0.5f ? "monitor" : "laptop");
+      onSurface(desk, "mug");
+      for (int k = 0; k < 2; ++k) {
+        const int shelf = againstWall(s, "bookshelf");
+        for (int l = 0; l < 4; ++l) onSurface(shelf, "books", l);
+      }
+      againstWall(s, "floor_lamp");
+    } else if (type == "bathroom" || type == "master_bathroom") {
+      const Eigen::Vector2d sz = s.interior.sizes();
+      if (sz.maxCoeff() >= 1.75 && rng_.uniform() < 0.6f) {
+        againstWall(s, "bathtub", longWalls());
+      } else {
+        againstWall(s, "shower");
+      }
+      againstWall(s, "toilet");
+      const int basin = againstWall(s, "bathroom_basin");
+      onWall(s, "mirror", basin, 1.2);
+      onWall(s, "towel");
+      if (type == "bathroom" && rng_.uniform() < 0.4f) againstWall(s, "washing_machine");
+    } else if (type == "balcony") {
+      againstWall(s, "potted_plant");
+      againstWall(s, "potted_plant");
+      againstWall(s, rng_.uniform() < 0.5f ? "bench" : "stool");
+    } else if (type == "corridor") {
+      onWall(s, "picture");
+      if (rng_.uniform() < 0.5f) onWall(s, "picture");
+      againstWall(s, "shoe_rack");
+    } else if (type == "entrance") {
+      const int rack = againstWall(s, "shoe_rack");
+      onSurface(rack, "shoes");
+      againstWall(s, "coat_rack");
+      onWall(s, "mirror");
+    } else if (type == "storage") {
+      for (int k = 0; k < 2; ++k) {
+        const int shelf = againstWall(s, "bookshelf");
+        for (int l = 0; l < 3; ++l) onSurface(shelf, "box", l);
+      }
+      againstWall(s, "cabinet");
+    } else if (type == "cloakroom") {
+      againstWall(s, "wardrobe");
+      againstWall(s, "wardrobe");
+      const int bench = againstWall(s, "bench");
+      onSurface(bench, "bag");
+    } else if (type == "laundry") {
+      againstWall(s, "washing_machine");
+      const int cab = againstWall(s, "cabinet");
+      onSurface(cab, "box");
+      onWall(s, "towel");
+    }
+    ceilingLight(s);
+  }
+
+  void chairAround(RoomState& s, int table, int k) {
+    const Box2 fp = footprintOf(table);
+    const Eigen::Vector2d c = fp.center(), half = fp.sizes() / 2;
+    const bool along_x = half.x() >= half.y();
+    const int per_side =
+        std::max(1, static_cast<int>((along_x ? 2 * half.x() : 2 * half.y()) / 0.6));
+    const int side = k % 2 == 0 ? 1 : -1;
+    const int slot = (k / 2) % per_side;
+    if (k / 2 >= per_side) return;
+    if (!known("dining_chair")) return;
+    FurnitureModel probe = makeFurniture("dining_chair", rng_);
+    const double offset = -0.5 * (per_side - 1) * 0.6 + slot * 0.6;
+    Eigen::Vector2d pos;
+    double yaw;
+    const double gap = 0.12 + probe.size.y() / 2;
+    if (along_x) {
+      pos = {c.x() + offset, c.y() + side * (half.y() + gap)};
+      yaw = side > 0 ? 0.0 : kPi;  // front (-y) towards the table
+    } else {
+      pos = {c.x() + side * (half.x() + gap), c.y() + offset};
+      yaw = side > 0 ? -kPi / 2 : kPi / 2;
+    }
+    const int chair = at(s, "dining_chair", pos, yaw);
+    if (chair >= 0) yaw_[chair] = yaw;
+  }
+
+  void daylight() {
+    const double elevation = uniform(rng_, 25, 55) * kPi / 180;
+    const double azimuth = uniform(rng_, 0, 2 * kPi);
+    const Vec3 to_sun(std::cos(elevation) * std::cos(azimuth),
+                      std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    Light sky;
+    sky.name = "sky";
+    sky.type = LightType::Sky;
+    sky.sky_model = SkyModel::Preetham;
+    sky.direction = -to_sun;
+    sky.turbidity = static_cast<float>(uniform(rng_, 2.5, 4));
+    sky.intensity = 15.f;
+    apt_.scene.lights.push_back(sky);
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Sun;
+    sun.direction = -to_sun;
+    sun.temperature_k = 5500.f;
+    sun.intensity = 120.f;
+    apt_.scene.lights.push_back(sun);
+  }
+
+  const ApartmentOptions& opt_;
+  CounterRng rng_;
+  fs::path layout_dir_, texture_dir_;
+  Apartment apt_;
+  std::map<std::string, int> materials_, meshes_, count_;
+  std::map<std::string, double> tile_;
+  std::map<int, int> wall_side_;
+  std::map<int, double> yaw_;
+  std::map<int, FurnitureModel> models_;
+  std::map<int, std::vector<Box2>> on_support_;
+  int instances_ = 0;
+  int sphere_ = -1;
+};
+
+}  // namespace
+
+Apartment makeApartment(const ApartmentOptions& opt, const fs::path& layout_dir,
+                        const fs::path& texture_dir) {
+  if (opt.rooms < 0 || opt.rooms > 16)
+    throw InputError("", "--rooms",
+                     fmt::format("must be in 1..16 (0 = random), got {}", opt.rooms));
+  if (opt.texture_size < 64 || opt.texture_size > 1024 ||
+      (opt.texture_size & (opt.texture_size - 1)) != 0)
+    throw InputError("", "--texture-size", "must be a power of two in 64..1024");
+  return Builder(opt, layout_dir, texture_dir).build();
+}
+
+std::vector<bool> reachableRooms(const Apartment& apt, double cell, double radius,
+                                 std::vector<double>* free_fraction) {
+  const FloorPlan& plan = apt.plan;
+  const Box2& fpb = plan.footprint;
+  const int nx = static_cast<int>(std::ceil(fpb.sizes().x() / cell));
+  const int ny = static_cast<int>(std::ceil(fpb.sizes().y() / cell));
+  const double t = plan.wall_thickness / 2;
+  std::vector<int> room_of(static_cast<size_t>(nx) * ny, -1);
+  std::vector<uint8_t> free(room_of.size(), 0);
+  auto centre = [&](int x, int y) {
+    return Eigen::Vector2d(fpb.min().x() + (x + 0.5) * cell, fpb.min().y() + (y + 0.5) * cell);
+  };
+  std::vector<Box2> blocked_grown, blocked;
+  for (const PlacedPiece& p : apt.pieces) {
+    if (!p.on_floor || p.flat) continue;
+    Box2 b;
+    for (const auto& h : p.hulls) b.extend(Box2(h.min().head<2>(), h.max().head<2>()));
+    blocked.push_back(b);
+    blocked_grown.push_back(Box2(b.min() - Eigen::Vector2d::Constant(radius),
+                                 b.max() + Eigen::Vector2d::Constant(radius)));
+  }
+  std::vector<double> room_cells(plan.rooms.size(), 0), room_free(plan.rooms.size(), 0);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      const Eigen::Vector2d c = centre(x, y);
+      const size_t k = static_cast<size_t>(y) * nx + x;
+      for (size_t r = 0; r < plan.rooms.size(); ++r) {
+        const Box2& b = plan.rooms[r].box;
+        const Box2 in(b.min() + Eigen::Vector2d::Constant(t),
+                      b.max() - Eigen::Vector2d::Constant(t));
+        if (in.contains(c)) room_of[k] = static_cast<int>(r);
+      }
+      bool doorway = false;
+      for (const PlanDoor& d : plan.doors) {
+        Box2 z = d.vertical ? Box2(Eigen::Vector2d(d.line - t - cell, d.from),
+                                   Eigen::Vector2d(d.line + t + cell, d.to))
+                            : Box2(Eigen::Vector2d(d.from, d.line - t - cell),
+                                   Eigen::Vector2d(d.to, d.line + t + cell));
+        if (d.b >= 0 && z.contains(c)) doorway = true;
+      }
+      if (room_of[k] < 0 && !doorway) continue;
+      bool hit = false, hit_grown = false;
+      for (size_t b = 0; b < blocked.size(); ++b) {
+        hit = hit || blocked[b].contains(c);
+        hit_grown = hit_grown || blocked_grown[b].contains(c);
+      }
+      if (room_of[k] >= 0) {
+        room_cells[room_of[k]] += 1;
+        room_free[room_of[k]] += hit ? 0 : 1;
+      }
+      free[k] = hit_grown ? 0 : 1;
+    }
+  // start: free cells of the room with the front door, nearest the door
+  int start = -1;
+  for (const PlanDoor& d : plan.doors)
+    if (d.b < 0) {
+      const Eigen::Vector2d mid = d.vertical ? Eigen::Vector2d(d.line, 0.5 * (d.from + d.to))
+                                             : Eigen::Vector2d(0.5 * (d.from + d.to), d.line);
+      double best = 1e9;
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+          const size_t k = static_cast<size_t>(y) * nx + x;
+          if (!free[k] || room_of[k] != d.a) continue;
+          const double dist = (centre(x, y) - mid).norm();
+          if (dist < best) {
+            best = dist;
+            start = static_cast<int>(k);
+          }
+        }
+    }
+  std::vector<bool> reached(plan.rooms.size(), false);
+  if (free_fraction) {
+    free_fraction->resize(plan.rooms.size());
+    for (size_t r = 0; r < plan.rooms.size(); ++r)
+      (*free_fraction)[r] = room_cells[r] > 0 ? room_free[r] / room_cells[r] : 0.0;
+  }
+  if (start < 0) return reached;
+  std::vector<uint8_t> seen(free.size(), 0);
+  std::queue<int> q;
+  q.push(start);
+  seen[start] = 1;
+  while (!q.empty()) {
+    const int c = q.front();
+    q.pop();
+    if (room_of[c] >= 0) reached[room_of[c]] = true;
+    const int x = c % nx, y = c / nx;
+    const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+    for (const auto& n : nb) {
+      if (n[0] < 0 || n[1] < 0 || n[0] >= nx || n[1] >= ny) continue;
+      const int k = n[1] * nx + n[0];
+      if (free[k] && !seen[k]) {
+        seen[k] = 1;
+        q.push(k);
+      }
+    }
+  }
+  return reached;
+}
+
+}  // namespace inet

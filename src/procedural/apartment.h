@@ -1,0 +1,65 @@
+#pragma once
+// Procedural furnished apartments (issue 4): a floor plan (floorplan.h) built into walls with
+// door and window openings, floors, ceilings and skirting, then furnished room by room from the
+// furniture library (furniture.h) by per-room-type rules: functional groups (a bed between
+// nightstands with lamps, a sofa facing a TV across a coffee table, a dining table with chairs,
+// a desk with its chair, kitchen counters with sink, stove and fridge, toilet, basin and bath),
+// tall pieces against walls and clear of windows, nothing in front of doorways, small clutter on
+// support surfaces, a ceiling light in every room, and daylight (a Preetham sky and a sun)
+// through the windows.
+//
+// Guarantees the builder checks as it goes (and tests check again on 1,000 seeds): no two
+// pieces' collision hulls overlap by more than 1 cm; every piece is inside its room and stands on
+// the floor, a support surface or a wall; at least 60 % of each room's floor stays free; every
+// room stays reachable from the front door through free floor (a 0.1 m grid, cleared by a 0.25 m
+// robot radius).
+//
+// Textures are procedural images (procedural_textures.h) written once per material under
+// `texture_dir`; meshes of textured pieces carry texture coordinates in metres / tile size.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "procedural/floorplan.h"
+#include "scene/scene.h"
+
+namespace inet {
+
+struct ApartmentOptions {
+  uint64_t seed = 0;
+  int rooms = 0;           ///< 1..16; 0 = drawn from the room-count distribution
+  int texture_size = 256;  ///< texels per side of the procedural textures
+  bool daylight = true;    ///< sky and sun through the windows
+};
+
+/// A placed piece of furniture: what the checks and statistics need.
+struct PlacedPiece {
+  std::string name;      ///< instance name in the scene ("sofa_3")
+  std::string category;  ///< furniture category
+  int room = -1;
+  int instance = 0;
+  std::vector<Eigen::AlignedBox3d> hulls;  ///< world-space collision boxes
+  bool on_floor = false;                   ///< stands on the floor (footprint blocks cameras)
+  bool flat = false;                       ///< rugs: on the floor but walkable
+};
+
+struct Apartment {
+  Scene scene;
+  FloorPlan plan;
+  std::vector<PlacedPiece> pieces;
+  std::vector<std::string> texture_files;  ///< written images (absolute paths)
+};
+
+/// Builds the apartment of `opt.seed`. Texture images go to `texture_dir` (created; the
+/// scene's TextureRefs point there, `file` relative to `layout_dir`).
+Apartment makeApartment(const ApartmentOptions& opt, const std::filesystem::path& layout_dir,
+                        const std::filesystem::path& texture_dir);
+
+/// Free-space reachability on a grid of `cell` metres over the plan: cells inside rooms or in
+/// doorways, minus floor pieces' footprints grown by `radius`. Returns, per room, whether a free
+/// cell of that room is reachable from the front door; `free_fraction` (if given) receives each
+/// room's free floor fraction (footprints not grown).
+std::vector<bool> reachableRooms(const Apartment& apt, double cell, double radius,
+                                 std::vector<double>* free_fraction = nullptr);
+
+}  // namespace inet

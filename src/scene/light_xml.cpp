@@ -1,0 +1,240 @@
+#include "scene/light_xml.h"
+
+#include <pugixml.hpp>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace inet {
+namespace {
+
+const char* typeName(const Light& l) {
+  switch (l.type) {
+    case LightType::Point:
+      return "PointLight";
+    case LightType::Spot:
+      return "SpotLight";
+    case LightType::Sun:
+      return "SunLight";
+    case LightType::Sky:
+      return "SkyLight";
+  }
+  return "PointLight";
+}
+
+/// Shortest text that reads back to the same double.
+std::string num(double v) {
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::string s = fmt::format("{:.{}g}", v, precision);
+    if (std::stod(s) == v) return s;
+  }
+  return fmt::format("{:.17g}", v);
+}
+
+template <class V>
+std::string vec(const V& v) {
+  std::string s;
+  for (int i = 0; i < v.size(); ++i) s += (i ? " " : "") + num(static_cast<double>(v[i]));
+  return s;
+}
+
+class Attrs {
+ public:
+  Attrs(const pugi::xml_node& node, std::string file, std::string field)
+      : node_(node), file_(std::move(file)), field_(std::move(field)) {}
+  bool has(const char* name) const { return node_.attribute(name); }
+  std::string text(const char* name) const {
+    pugi::xml_attribute a = node_.attribute(name);
+    if (!a) fail(name, "missing attribute");
+    return a.value();
+  }
+  double number(const char* name) const {
+    const std::string t = text(name);
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0' || !std::isfinite(v))
+      fail(name, "expected a finite number, got '" + t + "'");
+    return v;
+  }
+  Vec3 vec3(const char* name) const {
+    std::istringstream in(text(name));
+    Vec3 v;
+    std::string extra;
+    if (!(in >> v.x() >> v.y() >> v.z()) || (in >> extra) || !v.allFinite())
+      fail(name, "expected three finite numbers 'x y z'");
+    return v;
+  }
+  bool flag(const char* name, bool fallback) const {
+    if (!has(name)) return fallback;
+    const std::string t = text(name);
+    if (t != "true" && t != "false") fail(name, "expected true or false, got '" + t + "'");
+    return t == "true";
+  }
+  [[noreturn]] void fail(const char* name, const std::string& problem) const {
+    throw InputError(file_, field_ + "." + name, problem);
+  }
+
+ private:
+  pugi::xml_node node_;
+  std::string file_, field_;
+};
+
+}  // namespace
+
+LightSetup lightSetupOf(const Scene& scene) {
+  LightSetup setup;
+  setup.lights = scene.lights;
+  std::map<std::string, bool> seen;
+  for (const Object& o : scene.objects) {
+    const Material& m = scene.materials[o.material];
+    if (!m.isEmissive() || seen[o.name]) continue;
+    seen[o.name] = true;
+    setup.areas.push_back({o.name, m.emission, true});
+  }
+  return setup;
+}
+
+void saveLightXml(const Scene& scene, const std::string& path) {
+  const LightSetup setup = lightSetupOf(scene);
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out += fmt::format("<lights layout=\"{}\" version=\"1\">\n", scene.name);
+  for (const Light& l : setup.lights) {
+    out += fmt::format("  <light name=\"{}\" type=\"{}\"", l.name, typeName(l));
+    if (!l.object.empty()) out += fmt::format(" object=\"{}\"", l.object);
+    out += fmt::format(" on=\"{}\" energy=\"{}\"", l.on ? "true" : "false", num(l.intensity));
+    if (l.type == LightType::Sky) {
+      out += fmt::format(" model=\"{}\"", skyModelName(l.sky_model));
+      if (l.sky_model == SkyModel::Preetham)
+        out += fmt::format(" sun_direction=\"{}\" turbidity=\"{}\"", vec(l.direction),
+                           num(l.turbidity));
+    } else {
+      out += fmt::format(" color=\"{}\" temperature_k=\"{}\"", vec(l.color), num(l.temperature_k));
+    }
+    if (l.type == LightType::Point || l.type == LightType::Spot)
+      out +=
+          fmt::format(" position=\"{}\" max_distance=\"{}\"", vec(l.position), num(l.max_distance));
+    if (l.type == LightType::Spot || l.type == LightType::Sun)
+      out += fmt::format(" direction=\"{}\"", vec(l.direction));
+    if (l.type == LightType::Spot)
+      out +=
+          fmt::format(" cone_deg=\"{}\" falloff_deg=\"{}\"", num(l.cone_deg), num(l.falloff_deg));
+    if (l.type == LightType::Sun)
+      out += fmt::format(" angular_diameter_deg=\"{}\"", num(l.angular_diameter_deg));
+    out += "/>\n";
+  }
+  for (const AreaLightEntry& a : setup.areas)
+    out += fmt::format("  <light type=\"AreaLight\" object=\"{}\" on=\"{}\" radiance=\"{}\"/>\n",
+                       a.object, a.on ? "true" : "false", vec(a.radiance));
+  out += "</lights>\n";
+  writeTextAtomic(path, out);
+}
+
+LightSetup loadLightXml(const std::string& path) {
+  const std::string text = readTextFile(path);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result ok = doc.load_buffer(text.data(), text.size());
+  if (!ok)
+    throw InputError(path, fmt::format("offset {}", ok.offset),
+                     fmt::format("malformed XML: {}", ok.description()));
+  const pugi::xml_node root = doc.child("lights");
+  if (!root) throw InputError(path, "lights", "missing the <lights> root element");
+  LightSetup setup;
+  int i = 0;
+  for (pugi::xml_node n : root.children()) {
+    const std::string field = fmt::format("light[{}]", i++);
+    if (n.type() != pugi::node_element) continue;
+    if (std::string(n.name()) != "light")
+      throw InputError(path, field, fmt::format("unknown element <{}>", n.name()));
+    const Attrs a(n, path, field);
+    const std::string type = a.text("type");
+    if (type == "AreaLight") {
+      AreaLightEntry e;
+      e.object = a.text("object");
+      e.on = a.flag("on", true);
+      const Vec3 r = a.vec3("radiance");
+      if (r.minCoeff() < 0) a.fail("radiance", "must be >= 0");
+      e.radiance = r.cast<float>();
+      setup.areas.push_back(e);
+      continue;
+    }
+    Light l;
+    l.name = a.text("name");
+    if (type == "PointLight") {
+      l.type = LightType::Point;
+    } else if (type == "SpotLight") {
+      l.type = LightType::Spot;
+    } else if (type == "SunLight") {
+      l.type = LightType::Sun;
+    } else if (type == "SkyLight") {
+      l.type = LightType::Sky;
+    } else {
+      a.fail("type", "unknown light type '" + type +
+                         "' (valid: PointLight, SpotLight, SunLight, SkyLight, AreaLight)");
+    }
+    if (a.has("object")) l.object = a.text("object");
+    l.on = a.flag("on", true);
+    l.intensity = static_cast<float>(a.number("energy"));
+    if (l.type == LightType::Sky) {
+      const std::string model = a.has("model") ? a.text("model") : "uniform";
+      if (model == "preetham") {
+        l.sky_model = SkyModel::Preetham;
+        l.direction = a.vec3("sun_direction");
+        l.turbidity = static_cast<float>(a.number("turbidity"));
+      } else if (model != "uniform") {
+        a.fail("model", "unknown sky model '" + model + "' (valid: uniform, preetham)");
+      }
+    } else {
+      if (a.has("color")) l.color = a.vec3("color").cast<float>();
+      if (a.has("temperature_k")) l.temperature_k = static_cast<float>(a.number("temperature_k"));
+    }
+    if (l.type == LightType::Point || l.type == LightType::Spot) {
+      l.position = a.vec3("position");
+      if (a.has("max_distance")) l.max_distance = static_cast<float>(a.number("max_distance"));
+    }
+    if (l.type == LightType::Spot || l.type == LightType::Sun) l.direction = a.vec3("direction");
+    if (l.type == LightType::Spot) {
+      l.cone_deg = static_cast<float>(a.number("cone_deg"));
+      l.falloff_deg = static_cast<float>(a.number("falloff_deg"));
+    }
+    if (l.type == LightType::Sun && a.has("angular_diameter_deg"))
+      l.angular_diameter_deg = static_cast<float>(a.number("angular_diameter_deg"));
+    setup.lights.push_back(l);
+  }
+  return setup;
+}
+
+void applyLightSetup(Scene& scene, const LightSetup& setup, const std::string& where) {
+  scene.lights = setup.lights;
+  for (size_t k = 0; k < setup.areas.size(); ++k) {
+    const AreaLightEntry& e = setup.areas[k];
+    bool found = false;
+    for (Object& o : scene.objects) {
+      if (o.name != e.object) continue;
+      found = true;
+      Material m = scene.materials[o.material];
+      const Vec3f emission = e.on ? e.radiance : Vec3f::Zero();
+      if (m.emission == emission) continue;
+      m.id = fmt::format("{}@{}", m.id, o.name);  // this object's own copy
+      m.emission = emission;
+      int index = scene.findMaterial(m.id);
+      if (index < 0) {
+        scene.materials.push_back(m);
+        index = static_cast<int>(scene.materials.size()) - 1;
+      }
+      scene.materials[index].emission = emission;
+      o.material = index;
+    }
+    if (!found)
+      throw InputError(where, fmt::format("AreaLight[{}].object", k),
+                       fmt::format("no object is named '{}'", e.object));
+  }
+  scene.validate(where);
+}
+
+}  // namespace inet

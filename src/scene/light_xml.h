@@ -1,0 +1,39 @@
+#pragma once
+// light.xml: a layout's lighting setup in the spirit of the InteriorNet paper's per-layout file
+// (light type, energy, maximum distance as in PBRT-v3, position, direction, colour or
+// temperature, on/off, and the object each light belongs to, e.g. a lamp). Analytic lights are
+// <light type="PointLight|SpotLight|SunLight|SkyLight">; emissive objects (area lights) are
+// <light type="AreaLight" object="..." radiance="r g b">. Switching lights or recolouring them is
+// editing this file; `applyLightXml` puts a setup onto a scene.
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace inet {
+
+/// An emissive object's entry: its radiance and whether it is on.
+struct AreaLightEntry {
+  std::string object;
+  Vec3f radiance = Vec3f::Zero();
+  bool on = true;
+  bool operator==(const AreaLightEntry&) const = default;
+};
+
+struct LightSetup {
+  std::vector<Light> lights;
+  std::vector<AreaLightEntry> areas;
+};
+
+/// The scene's lights plus one AreaLight per emissive object instance (named by the object).
+LightSetup lightSetupOf(const Scene& scene);
+/// Writes the setup as light.xml (atomically; fixed attribute order and number format).
+void saveLightXml(const Scene& scene, const std::string& path);
+/// Reads light.xml; throws InputError(path, "light[i].attribute", problem) for bad input.
+LightSetup loadLightXml(const std::string& path);
+/// Replaces the scene's analytic lights and sets each listed emissive object's emission (0 when
+/// off; objects sharing a material get their own copy). Throws InputError(where, ...) when an
+/// entry names an object the scene does not have.
+void applyLightSetup(Scene& scene, const LightSetup& setup, const std::string& where);
+
+}  // namespace inet

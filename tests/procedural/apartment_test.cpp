@@ -1,0 +1,157 @@
+// Generated apartments: the acceptance checks on many seeds (every room reachable from
+// the front door through free floor, no two pieces' hulls interpenetrating by more than 1 cm,
+// every piece inside its room, at least 60 % free floor per room), determinism, round trips of
+// layout.json and light.xml, and that the scene builds and renders.
+#include "procedural/apartment.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "render/renderer.h"
+#include "scene/layout_json.h"
+#include "scene/light_xml.h"
+
+namespace inet {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() {
+    static int n = 0;
+    path_ = fs::temp_directory_path() /
+            ("inet_apartment_test_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+Apartment build(uint64_t seed, const fs::path& dir, int texture_size = 64) {
+  ApartmentOptions opt;
+  opt.seed = seed;
+  opt.texture_size = texture_size;
+  return makeApartment(opt, dir, dir / "textures");
+}
+
+/// Deepest overlap of two boxes (the smallest extent of their intersection), 0 when apart.
+double penetration(const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& b) {
+  const Eigen::AlignedBox3d i = a.intersection(b);
+  return i.isEmpty() ? 0.0 : i.sizes().minCoeff();
+}
+
+void checkApartment(const Apartment& apt) {
+  // every room reachable from the front door through free floor (0.1 m grid, 0.25 m radius)
+  std::vector<double> free;
+  const std::vector<bool> reached = reachableRooms(apt, 0.1, 0.25, &free);
+  for (size_t r = 0; r < reached.size(); ++r) {
+    EXPECT_TRUE(reached[r]) << "room " << apt.scene.rooms[r].id << " unreachable";
+    EXPECT_GE(free[r], 0.6) << "room " << apt.scene.rooms[r].id << " free floor";
+  }
+  // furniture: inside its room, no interpenetration (walls and floors are the shell)
+  const double t = apt.plan.wall_thickness / 2;
+  std::vector<const PlacedPiece*> furniture;
+  for (const PlacedPiece& p : apt.pieces) {
+    static const std::set<std::string> shell = {"wall",     "floor", "ceiling",
+                                                "skirting", "door",  "window"};
+    if (shell.count(p.category)) continue;
+    furniture.push_back(&p);
+    ASSERT_GE(p.room, 0) << p.name;
+    const auto& b = apt.plan.rooms[p.room].box;
+    for (const auto& h : p.hulls) {
+      EXPECT_GE(h.min().x(), b.min().x() + t - 0.01) << p.name;
+      EXPECT_GE(h.min().y(), b.min().y() + t - 0.01) << p.name;
+      EXPECT_LE(h.max().x(), b.max().x() - t + 0.01) << p.name;
+      EXPECT_LE(h.max().y(), b.max().y() - t + 0.01) << p.name;
+      EXPECT_GE(h.min().z(), -0.01) << p.name;
+      EXPECT_LE(h.max().z(), apt.plan.ceiling + 0.01) << p.name;
+    }
+  }
+  for (size_t i = 0; i < furniture.size(); ++i)
+    for (size_t j = i + 1; j < furniture.size(); ++j) {
+      if (furniture[i]->flat || furniture[j]->flat) continue;  // rugs lie under things
+      for (const auto& a : furniture[i]->hulls)
+        for (const auto& b : furniture[j]->hulls)
+          EXPECT_LE(penetration(a, b), 0.01)
+              << furniture[i]->name << " and " << furniture[j]->name << " interpenetrate";
+    }
+}
+
+TEST(Apartment, AcceptanceChecksOnManySeeds) {
+  TempDir dir;
+  for (uint64_t seed = 0; seed < 200; ++seed) {
+    SCOPED_TRACE(seed);
+    Apartment apt = build(seed, dir.path() / std::to_string(seed));
+    checkApartment(apt);
+    if (HasFailure()) break;
+  }
+}
+
+TEST(Apartment, DeterministicAndRoundTrips) {
+  TempDir a, b;
+  Apartment x = build(7, a.path()), y = build(7, b.path());
+  const std::string path = (a.path() / "layout.json").string();
+  saveLayout(x.scene, path);
+  saveLayout(y.scene, (b.path() / "layout.json").string());
+  EXPECT_EQ(readTextFile(path), readTextFile((b.path() / "layout.json").string()))
+      << "same seed, same bytes";
+  Scene loaded = loadLayout(path);
+  EXPECT_EQ(layoutToJson(loaded), readTextFile(path)) << "layout.json round-trips exactly";
+  // light.xml round trip
+  const std::string lx = (a.path() / "light.xml").string();
+  saveLightXml(x.scene, lx);
+  LightSetup setup = loadLightXml(lx);
+  EXPECT_EQ(setup.lights.size(), x.scene.lights.size());
+  Scene copy = loaded;
+  applyLightSetup(copy, setup, lx);
+  saveLightXml(copy, (a.path() / "again.xml").string());
+  EXPECT_EQ(readTextFile(lx), readTextFile((a.path() / "again.xml").string()));
+  // a different seed differs
+  TempDir c;
+  Apartment z = build(8, c.path());
+  EXPECT_NE(layoutToJson(z.scene), layoutToJson(x.scene));
+}
+
+TEST(Apartment, BuildsAndRendersWithLabels) {
+  TempDir dir;
+  Apartment apt = build(3, dir.path());
+  Renderer r(apt.scene);
+  // a camera in the middle of the first room, 1.5 m up, looking along the longer side
+  const Room& room = apt.scene.rooms[0];
+  Eigen::AlignedBox2d b;
+  for (const auto& p : room.outline) b.extend(p);
+  const Eigen::Vector2d c = b.center();
+  const Vec3 eye(c.x(), c.y(), 1.5), target(b.max().x(), c.y(), 1.0);
+  CameraIntrinsics K;
+  K.width = 64;
+  K.height = 48;
+  K.fx = K.fy = 40;
+  K.cx = 32;
+  K.cy = 24;
+  RenderOptions opt;
+  opt.spp = 4;
+  opt.passes = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Label) |
+               static_cast<PassMask>(Pass::Instance);
+  Frame f;
+  r.render(K, Pose::lookAt(eye, target, Vec3::UnitZ()), opt, 0, f);
+  std::set<int> labels;
+  for (uint8_t v : f.label.data) labels.insert(v);
+  EXPECT_TRUE(labels.count(1)) << "walls in view";
+  EXPECT_EQ(labels.count(0), 0u) << "a closed apartment: every pixel hits something";
+  double mean = 0;
+  for (float v : f.rgb.data) mean += v;
+  EXPECT_GT(mean / f.rgb.data.size(), 0.0) << "lit";
+}
+
+}  // namespace
+}  // namespace inet

@@ -1,0 +1,128 @@
+// light.xml: every light type and area lights round-trip exactly; a setup switches lights and
+// recolours emitters; malformed files give one-line errors naming file and attribute.
+#include "scene/light_xml.h"
+
+#include <gtest/gtest.h>
+
+#include "core/atomic_file.h"
+#include "scene/primitives.h"
+#include "scene_test_util.h"
+
+namespace inet {
+namespace {
+
+using test::TempDir;
+
+Scene litScene() {
+  Scene s;
+  s.name = "lit";
+  Mesh q = makePrimitive("quad", {}, "t", "q");
+  q.id = "quad";
+  s.meshes = {q};
+  Material white, glow;
+  white.id = "white";
+  glow.id = "glow";
+  glow.emission = Vec3f(3, 2.5f, 2);
+  s.materials = {white, glow};
+  Object floor{"floor", 0, 0, Mat4::Identity(), 2, 1, {}};
+  Object panel{"ceiling_light_1", 0, 1, Mat4::Identity(), 35, 2, {}};
+  panel.T_world_object(2, 3) = 2.5;
+  Object panel2 = panel;
+  panel2.name = "ceiling_light_2";
+  panel2.instance = 3;
+  s.objects = {floor, panel, panel2};
+  Light point;
+  point.name = "lamp_light";
+  point.position = Vec3(1, 2, 1.2);
+  point.intensity = 4.5f;
+  point.temperature_k = 2700;
+  point.max_distance = 6;
+  point.object = "floor";
+  Light spot;
+  spot.name = "spot";
+  spot.type = LightType::Spot;
+  spot.position = Vec3(0, 0, 2.4);
+  spot.direction = Vec3(0, 0, -1);
+  spot.cone_deg = 35;
+  spot.falloff_deg = 7.5f;
+  spot.color = Vec3f(1, 0.9f, 0.8f);
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::Sun;
+  sun.direction = Vec3(0.6, 0, -0.8);
+  sun.intensity = 300;
+  Light sky;
+  sky.name = "sky";
+  sky.type = LightType::Sky;
+  sky.sky_model = SkyModel::Preetham;
+  sky.direction = Vec3(0.6, 0, -0.8);
+  sky.turbidity = 3.25f;
+  sky.intensity = 20;
+  sky.on = false;
+  s.lights = {point, spot, sun, sky};
+  return s;
+}
+
+TEST(LightXml, RoundTripsEveryLightAndAreaLights) {
+  TempDir dir;
+  Scene s = litScene();
+  const std::string path = (dir.path() / "light.xml").string();
+  saveLightXml(s, path);
+  const LightSetup setup = loadLightXml(path);
+  ASSERT_EQ(setup.lights.size(), 4u);
+  Scene t = litScene();
+  t.lights.clear();
+  applyLightSetup(t, setup, path);
+  test::expectScenesEqual(s, t);
+  ASSERT_EQ(setup.areas.size(), 2u) << "one entry per emissive instance";
+  EXPECT_EQ(setup.areas[0].object, "ceiling_light_1");
+  EXPECT_EQ(setup.areas[0].radiance, Vec3f(3, 2.5f, 2));
+  saveLightXml(t, (dir.path() / "again.xml").string());
+  EXPECT_EQ(readTextFile(path), readTextFile((dir.path() / "again.xml").string()));
+}
+
+TEST(LightXml, SwitchesAndRecoloursOneEmitter) {
+  TempDir dir;
+  Scene s = litScene();
+  LightSetup setup = lightSetupOf(s);
+  setup.areas[1].on = false;                 // ceiling_light_2 off
+  setup.areas[0].radiance = Vec3f(1, 1, 4);  // ceiling_light_1 bluish
+  applyLightSetup(s, setup, "test");
+  EXPECT_EQ(s.materials[s.objects[1].material].emission, Vec3f(1, 1, 4));
+  EXPECT_FALSE(s.materials[s.objects[2].material].isEmissive());
+  EXPECT_NE(s.objects[1].material, s.objects[2].material) << "each got its own copy";
+  setup.areas.push_back({"chandelier", Vec3f::Ones(), true});
+  EXPECT_THROW(applyLightSetup(s, setup, "test"), InputError);
+}
+
+TEST(LightXml, MalformedFilesNameFileAndAttribute) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"<lights><light", "malformed XML"},
+      {"<lamps/>", "<lights>"},
+      {"<lights><lamp/></lights>", "light[0]: unknown element <lamp>"},
+      {R"(<lights><light name="a" type="LaserLight" energy="1"/></lights>)", "light[0].type"},
+      {R"(<lights><light name="a" type="PointLight" energy="x" position="0 0 0"/></lights>)",
+       "light[0].energy"},
+      {R"(<lights><light name="a" type="PointLight" energy="1" position="0 0"/></lights>)",
+       "light[0].position"},
+      {R"(<lights><light name="a" type="PointLight" energy="1"/></lights>)",
+       "light[0].position: missing attribute"},
+      {R"(<lights><light type="AreaLight" object="x" radiance="1 -1 1"/></lights>)",
+       "light[0].radiance"},
+      {R"(<lights><light name="a" type="SunLight" energy="1" direction="0 0 -1" on="yes"/></lights>)",
+       "light[0].on"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    const std::string path = dir.write("bad" + std::to_string(i) + ".xml", cases[i].first);
+    const std::string msg = test::errorOf([&] { (void)loadLightXml(path); });
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find(cases[i].second), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+  }
+  EXPECT_NE(test::errorOf([&] { (void)loadLightXml((dir.path() / "none.xml").string()); }), "");
+}
+
+}  // namespace
+}  // namespace inet
