@@ -67,8 +67,10 @@ struct GenerateLayoutArgs {
   std::string out;
 };
 
-/// One apartment into `dir`: layout.json, light.xml and textures/.
-void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesystem::path& dir) {
+/// One apartment into `dir`: layout.json and light.xml; textures go to `textures` (shared by
+/// the apartments of one run: they depend on the material only).
+void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesystem::path& dir,
+                 const std::filesystem::path& textures) {
   namespace fs = std::filesystem;
   fs::create_directories(dir);
   ApartmentOptions opt;
@@ -76,7 +78,7 @@ void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesyst
   opt.rooms = a.rooms;
   opt.texture_size = a.texture_size;
   opt.daylight = a.daylight;
-  Apartment apt = makeApartment(opt, dir, dir / "textures");
+  Apartment apt = makeApartment(opt, dir, textures);
   saveLayout(apt.scene, (dir / "layout.json").string());
   saveLightXml(apt.scene, (dir / "light.xml").string());
 }
@@ -86,7 +88,7 @@ void generateLayouts(const GenerateLayoutArgs& a) {
   if (a.out.empty()) throw InputError("", "--out", "an output folder is needed");
   if (a.count < 1) throw InputError("", "--count", "must be >= 1");
   if (a.count == 1) {
-    generateOne(a, a.seed, a.out);
+    generateOne(a, a.seed, a.out, fs::path(a.out) / "textures");
     fmt::print("wrote {}/layout.json and light.xml\n", a.out);
     return;
   }
@@ -94,7 +96,8 @@ void generateLayouts(const GenerateLayoutArgs& a) {
   for (int k = 0; k < a.count; ++k) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(k);
     const fs::path dir = fs::path(a.out) / fmt::format("seed_{:06d}", seed);
-    if (!fs::exists(dir / "layout.json")) generateOne(a, seed, dir);  // a rerun resumes
+    if (!fs::exists(dir / "layout.json"))  // a rerun resumes
+      generateOne(a, seed, dir, fs::path(a.out) / "textures");
     bar.update(k + 1);
   }
   bar.finish();
@@ -122,8 +125,9 @@ void registerLayout(CLI::App& app) {
   gen->add_option("--rooms", gen_args->rooms,
                   "number of rooms, 1 (studio) .. 16; default: drawn like the paper's Fig. 3");
   gen->add_option("--count", gen_args->count,
-                  "apartments to make, seeds seed .. seed+count-1, each in OUT/seed_NNNNNN "
-                  "(default 1: OUT itself); a rerun skips finished ones");
+                  "apartments to make, seeds seed .. seed+count-1, each in OUT/seed_NNNNNN, "
+                  "textures shared in OUT/textures (default 1: OUT itself); a rerun skips "
+                  "finished ones");
   gen->add_option("--texture-size", gen_args->texture_size,
                   "texels per side of the procedural textures (power of two, default 256)");
   gen->add_flag("!--no-daylight", gen_args->daylight, "no sky or sun through the windows");

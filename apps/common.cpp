@@ -15,6 +15,7 @@
 #include "scene/assimp_importer.h"
 #include "scene/default_scene.h"
 #include "scene/layout_json.h"
+#include "scene/light_xml.h"
 
 namespace inet::app {
 
@@ -27,9 +28,18 @@ void SceneArgs::addTo(CLI::App& cmd) {
   cmd.add_option("--scale", scale, "metres per unit of an imported mesh scene (default 1)");
   cmd.add_option("--labels", labels,
                  "CSV 'name,nyu40' mapping object names of an imported scene to NYU40");
+  cmd.add_option("--lights", lights,
+                 "light.xml lighting setup replacing the scene's lights (switch lamps on or off, "
+                 "recolour them, dim the sun); default: the scene's own");
 }
 
 Scene SceneArgs::load() const {
+  Scene s = loadScene();
+  if (!lights.empty()) applyLightSetup(s, loadLightXml(lights), lights);
+  return s;
+}
+
+Scene SceneArgs::loadScene() const {
   if (path.empty()) return makeDefaultScene();
   std::filesystem::path p(path);
   if (p.extension() == ".json") return loadLayout(path);

@@ -18,10 +18,12 @@ struct SceneArgs {
   std::string up = "z";
   double scale = 1.0;
   std::string labels;
-  /// Adds --layout/--scene, --up, --scale, --labels to `cmd`.
+  std::string lights;  ///< light.xml to apply, "" = the scene's own lights
+  /// Adds --layout/--scene, --up, --scale, --labels, --lights to `cmd`.
   void addTo(CLI::App& cmd);
   /// Loads the scene; prints the importer's warning summary once. Throws InputError.
   Scene load() const;
+  Scene loadScene() const;  ///< without --lights
   bool isDefault() const { return path.empty(); }
 };
 

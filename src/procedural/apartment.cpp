@@ -1,6 +1,7 @@
 #include "procedural/apartment.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <queue>
@@ -21,8 +22,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDoorZone = 1.0;      ///< floor kept clear in front of a doorway (m)
-constexpr double kMaxOccupied = 0.38;  ///< share of a room's floor furniture may cover
-constexpr double kRobotRadius = 0.33;  ///< clearance the builder keeps (checks use 0.25 m)
+constexpr double kMaxOccupied = 0.35;  ///< share of a room's floor furniture may cover
+constexpr double kRobotRadius = 0.25;  ///< clearance kept for cameras (reachableRooms)
 constexpr double kGridCell = 0.1;
 
 double uniform(CounterRng& rng, double lo, double hi) {
@@ -144,11 +145,21 @@ class Builder {
       m.albedo = Vec3f::Constant(0.8f);  // not used by glass; keep the default
     if (spec.texture != TextureKind::None && spec.type != MaterialType::Dielectric &&
         spec.type != MaterialType::ThinDielectric && !m.isEmissive()) {
-      const TextureSet set =
-          makeTexture(spec.texture, m.albedo, opt_.seed * 0x9e3779b97f4a7c15ull ^ fnv1a(spec.name),
-                      opt_.texture_size);
+      // Textures depend on the material name and the size only, so apartments written to one
+      // folder share them: a file already there (writers are atomic) is reused as is.
       fs::create_directories(texture_dir_);
-      const auto files = writeTexture(set, texture_dir_, spec.name);
+      std::array<std::string, 3> files;
+      if (fs::exists(texture_dir_ / (spec.name + "_albedo.png"))) {
+        const char* suffix[3] = {"_albedo.png", "_roughness.png", "_normal.png"};
+        for (int k = 0; k < 3; ++k) {
+          const fs::path f = texture_dir_ / (spec.name + suffix[k]);
+          files[k] = fs::exists(f) ? f.string() : std::string();
+        }
+      } else {
+        const TextureSet set =
+            makeTexture(spec.texture, m.albedo, fnv1a(spec.name), opt_.texture_size);
+        files = writeTexture(set, texture_dir_, spec.name);
+      }
       auto ref = [&](const std::string& path) {
         TextureRef r;
         r.path = path;
@@ -519,8 +530,9 @@ class Builder {
       return z;
     };
     for (const PlanDoor& d : plan.doors)
-      if (d.a == i || d.b == i)
+      if (d.a == i || d.b == i) {
         s.door_zones.push_back(zone(d.vertical, d.line, d.from - 0.15, d.to + 0.15, kDoorZone));
+      }
     for (const PlanWindow& w : plan.windows)
       if (w.room == i) s.window_zones.push_back(zone(w.vertical, w.line, w.from, w.to, 0.45));
     return s;
@@ -550,74 +562,19 @@ class Builder {
     return true;
   }
 
-  /// Keeps the piece when the room's doors stay connected through free floor; else undoes it.
+  /// Keeps the piece when every room stays reachable from the front door through free floor
+  /// (the very check the tests make, reachableRooms); else undoes it.
   bool commitFloor(RoomState& s, const Box2& fp, bool flat, size_t objects_before,
                    size_t lights_before) {
     if (!flat) {
-      s.floor_boxes.push_back(fp);
-      if (!doorsConnected(s)) {
-        s.floor_boxes.pop_back();
+      const std::vector<bool> reached = reachableRooms(apt_, kGridCell, kRobotRadius);
+      if (std::find(reached.begin(), reached.end(), false) != reached.end()) {
         undo(objects_before, lights_before);
         return false;
       }
+      s.floor_boxes.push_back(fp);
       s.occupied += fp.volume();
     }
-    return true;
-  }
-
-  /// Are all door zones of the room connected through free grid cells (robot radius)?
-  bool doorsConnected(const RoomState& s) const {
-    const Box2& in = s.interior;
-    const int nx = std::max(1, static_cast<int>(in.sizes().x() / kGridCell));
-    const int ny = std::max(1, static_cast<int>(in.sizes().y() / kGridCell));
-    std::vector<uint8_t> free(static_cast<size_t>(nx) * ny, 1);
-    auto centre = [&](int x, int y) {
-      return Eigen::Vector2d(in.min().x() + (x + 0.5) * kGridCell,
-                             in.min().y() + (y + 0.5) * kGridCell);
-    };
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x) {
-        const Eigen::Vector2d c = centre(x, y);
-        for (const Box2& b : s.floor_boxes) {
-          const Box2 grown(b.min() - Eigen::Vector2d::Constant(kRobotRadius),
-                           b.max() + Eigen::Vector2d::Constant(kRobotRadius));
-          if (grown.contains(c)) free[y * nx + x] = 0;
-        }
-      }
-    // seed cells: the free cells inside each door zone
-    std::vector<std::vector<int>> seeds;
-    for (const Box2& z : s.door_zones) {
-      std::vector<int> cells;
-      for (int y = 0; y < ny; ++y)
-        for (int x = 0; x < nx; ++x)
-          if (free[y * nx + x] && z.contains(centre(x, y))) cells.push_back(y * nx + x);
-      if (cells.empty()) return false;
-      seeds.push_back(cells);
-    }
-    if (seeds.size() < 1) return true;
-    std::vector<uint8_t> seen(free.size(), 0);
-    std::queue<int> q;
-    for (int c : seeds[0]) {
-      seen[c] = 1;
-      q.push(c);
-    }
-    while (!q.empty()) {
-      const int c = q.front();
-      q.pop();
-      const int x = c % nx, y = c / nx;
-      const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-      for (const auto& n : nb) {
-        if (n[0] < 0 || n[1] < 0 || n[0] >= nx || n[1] >= ny) continue;
-        const int k = n[1] * nx + n[0];
-        if (free[k] && !seen[k]) {
-          seen[k] = 1;
-          q.push(k);
-        }
-      }
-    }
-    for (size_t z = 1; z < seeds.size(); ++z)
-      if (std::none_of(seeds[z].begin(), seeds[z].end(), [&](int c) { return seen[c]; }))
-        return false;
     return true;
   }
 
@@ -1057,6 +1014,11 @@ class Builder {
   }
 
   void daylight() {
+    // the ground outside, seen through the windows below the horizon (the sky has nothing there)
+    const Eigen::Vector2d c = apt_.plan.footprint.center();
+    box("ground", "ground", 0, -1,
+        plain("ground_grass", Vec3f(0.12f, 0.16f, 0.08f), TextureKind::None, 1.f),
+        Vec3(c.x() - 150, c.y() - 150, -0.30), Vec3(c.x() + 150, c.y() + 150, -0.25));
     const double elevation = uniform(rng_, 25, 55) * kPi / 180;
     const double azimuth = uniform(rng_, 0, 2 * kPi);
     const Vec3 to_sun(std::cos(elevation) * std::cos(azimuth),
@@ -1067,14 +1029,14 @@ class Builder {
     sky.sky_model = SkyModel::Preetham;
     sky.direction = -to_sun;
     sky.turbidity = static_cast<float>(uniform(rng_, 2.5, 4));
-    sky.intensity = 15.f;
+    sky.intensity = 40.f;
     apt_.scene.lights.push_back(sky);
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Sun;
     sun.direction = -to_sun;
     sun.temperature_k = 5500.f;
-    sun.intensity = 120.f;
+    sun.intensity = 350.f;
     apt_.scene.lights.push_back(sun);
   }
 
@@ -1113,50 +1075,59 @@ std::vector<bool> reachableRooms(const Apartment& apt, double cell, double radiu
   const int ny = static_cast<int>(std::ceil(fpb.sizes().y() / cell));
   const double t = plan.wall_thickness / 2;
   std::vector<int> room_of(static_cast<size_t>(nx) * ny, -1);
-  std::vector<uint8_t> free(room_of.size(), 0);
+  std::vector<uint8_t> walkable(room_of.size(), 0), blocked(room_of.size(), 0),
+      blocked_grown(room_of.size(), 0);
   auto centre = [&](int x, int y) {
     return Eigen::Vector2d(fpb.min().x() + (x + 0.5) * cell, fpb.min().y() + (y + 0.5) * cell);
   };
-  std::vector<Box2> blocked_grown, blocked;
+  // calls f(k) for every cell whose centre lies in b (closed box)
+  auto raster = [&](const Box2& b, auto f) {
+    const int x0 =
+        std::max(0, static_cast<int>(std::ceil((b.min().x() - fpb.min().x()) / cell - 0.5)));
+    const int x1 =
+        std::min(nx - 1, static_cast<int>(std::floor((b.max().x() - fpb.min().x()) / cell - 0.5)));
+    const int y0 =
+        std::max(0, static_cast<int>(std::ceil((b.min().y() - fpb.min().y()) / cell - 0.5)));
+    const int y1 =
+        std::min(ny - 1, static_cast<int>(std::floor((b.max().y() - fpb.min().y()) / cell - 0.5)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) f(static_cast<size_t>(y) * nx + x);
+  };
+  for (size_t r = 0; r < plan.rooms.size(); ++r) {
+    const Box2& b = plan.rooms[r].box;
+    raster(Box2(b.min() + Eigen::Vector2d::Constant(t), b.max() - Eigen::Vector2d::Constant(t)),
+           [&](size_t k) {
+             room_of[k] = static_cast<int>(r);
+             walkable[k] = 1;
+           });
+  }
+  for (const PlanDoor& d : plan.doors) {
+    if (d.b < 0) continue;
+    const Box2 z = d.vertical ? Box2(Eigen::Vector2d(d.line - t - cell, d.from),
+                                     Eigen::Vector2d(d.line + t + cell, d.to))
+                              : Box2(Eigen::Vector2d(d.from, d.line - t - cell),
+                                     Eigen::Vector2d(d.to, d.line + t + cell));
+    raster(z, [&](size_t k) { walkable[k] = 1; });
+  }
   for (const PlacedPiece& p : apt.pieces) {
     if (!p.on_floor || p.flat) continue;
     Box2 b;
     for (const auto& h : p.hulls) b.extend(Box2(h.min().head<2>(), h.max().head<2>()));
-    blocked.push_back(b);
-    blocked_grown.push_back(Box2(b.min() - Eigen::Vector2d::Constant(radius),
-                                 b.max() + Eigen::Vector2d::Constant(radius)));
+    raster(b, [&](size_t k) { blocked[k] = 1; });
+    raster(Box2(b.min() - Eigen::Vector2d::Constant(radius),
+                b.max() + Eigen::Vector2d::Constant(radius)),
+           [&](size_t k) { blocked_grown[k] = 1; });
   }
+  std::vector<uint8_t> free(room_of.size(), 0);
   std::vector<double> room_cells(plan.rooms.size(), 0), room_free(plan.rooms.size(), 0);
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      const Eigen::Vector2d c = centre(x, y);
-      const size_t k = static_cast<size_t>(y) * nx + x;
-      for (size_t r = 0; r < plan.rooms.size(); ++r) {
-        const Box2& b = plan.rooms[r].box;
-        const Box2 in(b.min() + Eigen::Vector2d::Constant(t),
-                      b.max() - Eigen::Vector2d::Constant(t));
-        if (in.contains(c)) room_of[k] = static_cast<int>(r);
-      }
-      bool doorway = false;
-      for (const PlanDoor& d : plan.doors) {
-        Box2 z = d.vertical ? Box2(Eigen::Vector2d(d.line - t - cell, d.from),
-                                   Eigen::Vector2d(d.line + t + cell, d.to))
-                            : Box2(Eigen::Vector2d(d.from, d.line - t - cell),
-                                   Eigen::Vector2d(d.to, d.line + t + cell));
-        if (d.b >= 0 && z.contains(c)) doorway = true;
-      }
-      if (room_of[k] < 0 && !doorway) continue;
-      bool hit = false, hit_grown = false;
-      for (size_t b = 0; b < blocked.size(); ++b) {
-        hit = hit || blocked[b].contains(c);
-        hit_grown = hit_grown || blocked_grown[b].contains(c);
-      }
-      if (room_of[k] >= 0) {
-        room_cells[room_of[k]] += 1;
-        room_free[room_of[k]] += hit ? 0 : 1;
-      }
-      free[k] = hit_grown ? 0 : 1;
+  for (size_t k = 0; k < free.size(); ++k) {
+    if (!walkable[k]) continue;
+    if (room_of[k] >= 0) {
+      room_cells[room_of[k]] += 1;
+      room_free[room_of[k]] += blocked[k] ? 0 : 1;
     }
+    free[k] = blocked_grown[k] ? 0 : 1;
+  }
   // start: free cells of the room with the front door, nearest the door
   int start = -1;
   for (const PlanDoor& d : plan.doors)
