@@ -1,6 +1,7 @@
 // interiornet layout show: what a layout or mesh scene contains, as the renderer will see it.
 // interiornet layout import: a mesh scene (OBJ, glTF, ...) written as a layout.json, to add
 // lights, materials or motion to by hand.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -11,8 +12,9 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "procedural/apartment.h"
-#include "scene/light_xml.h"
 #include "scene/layout_json.h"
+#include "scene/layout_stats.h"
+#include "scene/light_xml.h"
 #include "scene/nyu40.h"
 
 namespace inet::app {
@@ -104,11 +106,33 @@ void generateLayouts(const GenerateLayoutArgs& a) {
   fmt::print("wrote {} layouts under {}\n", a.count, a.out);
 }
 
+/// Statistics over every layout.json found in `in` (the folder itself or its sub-folders).
+void layoutStats(const std::string& in, const std::string& out) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(in, ec)) throw InputError(in, "DIR", "not a folder");
+  std::vector<fs::path> files;
+  if (fs::exists(fs::path(in) / "layout.json")) files.push_back(fs::path(in) / "layout.json");
+  for (const auto& e : fs::directory_iterator(in, ec))
+    if (e.is_directory() && fs::exists(e.path() / "layout.json"))
+      files.push_back(e.path() / "layout.json");
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw InputError(in, "DIR", "no layout.json in it or its sub-folders");
+  LayoutStats stats;
+  ProgressBar bar(static_cast<int64_t>(files.size()), "layouts");
+  for (size_t i = 0; i < files.size(); ++i) {
+    stats.add(loadLayout(files[i].string()));
+    bar.update(static_cast<int64_t>(i + 1));
+  }
+  bar.finish();
+  stats.write(out);
+  fmt::print("{} layouts: statistics (CSV and SVG charts) in {}\n", stats.layouts, out);
+}
+
 }  // namespace
 
 void registerLayout(CLI::App& app) {
-  auto* layout = app.add_subcommand(
-      "layout", "Generate, import and inspect layouts");
+  auto* layout = app.add_subcommand("layout", "Generate, import and inspect layouts");
   layout->require_subcommand(1);
   auto* show = layout->add_subcommand(
       "show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
@@ -133,6 +157,17 @@ void registerLayout(CLI::App& app) {
   gen->add_flag("!--no-daylight", gen_args->daylight, "no sky or sun through the windows");
   gen->add_option("--out", gen_args->out, "output folder")->required();
   gen->callback([gen_args] { generateLayouts(*gen_args); });
+
+  auto* stats = layout->add_subcommand(
+      "stats",
+      "Statistics of many layouts (the paper's Fig. 3): rooms and objects per layout, object "
+      "categories, room types; CSV tables and SVG bar charts");
+  auto stats_in = std::make_shared<std::string>();
+  auto stats_out = std::make_shared<std::string>();
+  stats->add_option("DIR", *stats_in, "folder with layout.json or sub-folders with one each")
+      ->required();
+  stats->add_option("--out", *stats_out, "output folder for the tables and charts")->required();
+  stats->callback([stats_in, stats_out] { layoutStats(*stats_in, *stats_out); });
 
   auto* import = layout->add_subcommand(
       "import",

@@ -177,9 +177,14 @@ std::vector<std::string> roomProgram(int count, CounterRng& rng) {
   std::vector<std::string> extra = {
       "second_bedroom", "corridor", "dining_room", "entrance", "kids_room",    "master_bathroom",
       "study",          "balcony",  "storage",     "laundry",  "elderly_room", "cloakroom"};
-  // mild shuffle of the optional rooms (keeps the big/common ones first on average)
-  for (size_t i = 0; i + 1 < extra.size(); ++i)
-    if (rng.uniform() < 0.35f) std::swap(extra[i], extra[i + 1]);
+  // seeded order of the optional rooms: each keeps its rank give or take a few places, so the
+  // common ones come first on average but every type turns up in mid-sized flats
+  std::vector<std::pair<double, std::string>> ranked;
+  for (size_t i = 0; i < extra.size(); ++i)
+    ranked.push_back({static_cast<double>(i) + 12.0 * rng.uniformDouble(), extra[i]});
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < extra.size(); ++i) extra[i] = ranked[i].second;
   order.insert(order.end(), extra.begin(), extra.end());
   order.resize(static_cast<size_t>(count));
   return order;

@@ -212,3 +212,43 @@ TEST(Cli, LayoutImportWritesALoadableLayout) {
 
 }  // namespace
 }  // namespace inet::test
+
+namespace inet::test {
+namespace {
+
+TEST(Cli, LayoutGenerateIsDeterministicResumesAndFeedsStats) {
+  TempDir dir("layout_generate");
+  const std::string a = (dir / "a").string(), b = (dir / "b").string();
+  ASSERT_EQ(runInterinet("layout generate --seed 11 --texture-size 64 --out " + a).exit_code, 0);
+  ASSERT_EQ(runInterinet("layout generate --seed 11 --texture-size 64 --out " + b).exit_code, 0);
+  EXPECT_EQ(readTree(a), readTree(b)) << "same seed, same bytes (layout, light.xml, textures)";
+  RunResult show = runInterinet("layout show --layout " + a + "/layout.json");
+  EXPECT_EQ(show.exit_code, 0) << show.err;
+  // --count: one folder per seed, shared textures; a rerun leaves finished ones alone
+  const std::string many = (dir / "many").string();
+  ASSERT_EQ(
+      runInterinet("layout generate --seed 3 --count 3 --texture-size 64 --out " + many).exit_code,
+      0);
+  const auto before = readTree(many);
+  EXPECT_TRUE(before.count("seed_000004/layout.json"));
+  EXPECT_TRUE(before.count("seed_000005/light.xml"));
+  std::filesystem::remove(dir / "many" / "seed_000004" / "layout.json");
+  ASSERT_EQ(
+      runInterinet("layout generate --seed 3 --count 3 --texture-size 64 --out " + many).exit_code,
+      0);
+  EXPECT_EQ(readTree(many), before) << "the missing one is made again, identical";
+  RunResult stats = runInterinet("layout stats " + many + " --out " + (dir / "stats").string());
+  EXPECT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_NE(stats.out.find("3 layouts"), std::string::npos) << stats.out;
+  // bad input: one line naming the flag, nothing written
+  for (const char* bad : {"--rooms 17", "--rooms -1", "--texture-size 100", "--count 0"}) {
+    const std::string out = (dir / "bad").string();
+    RunResult r = runInterinet(std::string("layout generate ") + bad + " --out " + out);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "layout.json")) << bad;
+  }
+}
+
+}  // namespace
+}  // namespace inet::test

@@ -8,10 +8,13 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include "core/atomic_file.h"
 #include "render/renderer.h"
 #include "scene/layout_json.h"
+#include "scene/layout_stats.h"
 #include "scene/light_xml.h"
 
 namespace inet {
@@ -153,6 +156,40 @@ TEST(Apartment, BuildsAndRendersWithLabels) {
   double mean = 0;
   for (float v : f.rgb.data) mean += v;
   EXPECT_GT(mean / f.rgb.data.size(), 0.0) << "lit";
+}
+
+}  // namespace
+}  // namespace inet
+
+namespace inet {
+namespace {
+
+TEST(LayoutStats, CountsRoomsObjectsCategoriesAndWritesCharts) {
+  TempDir dir;
+  LayoutStats stats;
+  std::map<std::string, size_t> kinds;
+  size_t rooms = 0;
+  for (uint64_t seed = 0; seed < 5; ++seed) {
+    Apartment apt = build(seed, dir.path() / std::to_string(seed), dir.path() / "textures");
+    stats.add(apt.scene);
+    rooms += apt.scene.rooms.size();
+    std::set<int> seen;
+    for (const Object& o : apt.scene.objects)
+      if (o.kind == "sofa" && seen.insert(o.instance).second) ++kinds["sofa"];
+  }
+  EXPECT_EQ(stats.layouts, 5u);
+  size_t counted = 0;
+  for (const auto& [k, n] : stats.room_types) counted += n;
+  EXPECT_EQ(counted, rooms);
+  EXPECT_EQ(stats.categories["sofa"], kinds["sofa"]) << "instances, not parts";
+  EXPECT_EQ(stats.categories.count("wall"), 0u) << "the shell is not furniture";
+  stats.write((dir.path() / "stats").string());
+  for (const char* f : {"rooms_per_layout.csv", "objects_per_layout.csv", "categories.csv",
+                        "room_types.csv", "categories.svg", "rooms_per_layout.svg"})
+    EXPECT_TRUE(fs::exists(dir.path() / "stats" / f)) << f;
+  const std::string svg = readTextFile((dir.path() / "stats" / "room_types.svg").string());
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("living_room"), std::string::npos);
 }
 
 }  // namespace
