@@ -23,7 +23,7 @@ TEST(FloorPlan, ThousandPlansTileConnectAndOpen) {
     const int k = sampleRoomCount(rng);
     ++counts[k];
     FloorPlan plan = makeFloorPlan(roomProgram(k, rng), rng);
-    ASSERT_EQ(plan.rooms.size(), static_cast<size_t>(k));
+    ASSERT_EQ(plan.rooms.size(), static_cast<size_t>(k)) << "all 1,000 fit without dropping";
     double area = 0;
     for (size_t i = 0; i < plan.rooms.size(); ++i) {
       const auto& b = plan.rooms[i].box;
@@ -63,6 +63,15 @@ TEST(FloorPlan, ThousandPlansTileConnectAndOpen) {
   int mid = 0;
   for (int k = 4; k <= 7; ++k) mid += counts[k];
   EXPECT_GT(mid, 500);
+}
+
+TEST(FloorPlan, EverySixteenRoomProgramGetsAPlan) {
+  for (uint32_t seed = 0; seed < 40; ++seed) {
+    CounterRng rng = rngFor(seed);
+    FloorPlan plan = makeFloorPlan(roomProgram(16, rng), rng);
+    EXPECT_GE(plan.rooms.size(), 12u) << "at most the few least needed rooms dropped";
+    EXPECT_TRUE(allRoomsReachable(plan));
+  }
 }
 
 TEST(FloorPlan, DeterministicPerSeed) {
