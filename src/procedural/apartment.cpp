@@ -921,7 +921,7 @@ class Builder {
       againstWall(s, "wardrobe");
       if (type == "kids_room") {
         const int desk = againstWall(s, "desk");
-        inFront(s, desk, "office_chair", 0.0, true);
+        inFront(s, desk, "office_chair", 0.05, true);
         const int shelf = againstWall(s, "bookshelf");
         onSurface(shelf, "books", 1);
         onSurface(shelf, "box", 0);
@@ -934,7 +934,7 @@ class Builder {
     } else if (type == "study") {
       curtains(s);
       const int desk = againstWall(s, "desk");
-      inFront(s, desk, "office_chair", 0.0, true);
+      inFront(s, desk, "office_chair", 0.05, true);
       onSurface(desk, rng_.uniform() < 0.5f ? "monitor" : "laptop");
       onSurface(desk, "mug");
       for (int k = 0; k < 2; ++k) {
