@@ -40,7 +40,10 @@ std::string num(double v) {
 template <class V>
 std::string vec(const V& v) {
   std::string s;
-  for (int i = 0; i < v.size(); ++i) s += (i ? " " : "") + num(static_cast<double>(v[i]));
+  for (int i = 0; i < v.size(); ++i) {
+    if (i) s += ' ';
+    s += num(static_cast<double>(v[i]));
+  }
   return s;
 }
 

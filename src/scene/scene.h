@@ -121,6 +121,18 @@ struct Object {
   std::optional<PhysicsProps> physics;  ///< absent = unknown (imported scenes)
 
   bool moving() const { return !motion.empty(); }
+  /// An object with the essentials set and every optional field at its default.
+  static Object make(std::string name, int mesh, int material, const Mat4& T_world_object,
+                     int nyu40, int instance) {
+    Object o;
+    o.name = std::move(name);
+    o.mesh = mesh;
+    o.material = material;
+    o.T_world_object = T_world_object;
+    o.nyu40 = nyu40;
+    o.instance = instance;
+    return o;
+  }
   /// Object-to-world transform at scene time t_s (T_world_object when static).
   Mat4 transformAt(double t_s) const;
 };

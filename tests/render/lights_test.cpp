@@ -27,7 +27,7 @@ Scene floorScene() {
   s.materials = {m};
   Mat4 T = Mat4::Identity();
   T.diagonal() << 200, 200, 1, 1;
-  s.objects = {Object{"floor", 0, 0, T, 2, 1, {}}};
+  s.objects = {Object::make("floor", 0, 0, T, 2, 1)};
   return s;
 }
 

@@ -108,7 +108,7 @@ TEST(PathTracer, WhiteFurnaceSphere) {
     m.id = "white";
     m.albedo = Vec3f::Constant(0.8f);
     s.materials = {m};
-    s.objects = {Object{"ball", 0, 0, Mat4::Identity(), 40, 1, {}}};
+    s.objects = {Object::make("ball", 0, 0, Mat4::Identity(), 40, 1)};
     Light sky;
     sky.name = "sky";
     sky.type = LightType::Sky;
@@ -171,17 +171,13 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
   s.materials = {floor_m, light_m};
   Mat4 floor_T = Mat4::Identity();
   floor_T.diagonal() << 100, 100, 1, 1;
-  Object fl{"floor", 0, 0, floor_T, 2, 1, {}};
+  Object fl = Object::make("floor", 0, 0, floor_T, 2, 1);
   const double h = 2.0, w = 0.2;  // square light of side w at height h, facing down
-  Object li{"light",
-            0,
-            1,
-            (Eigen::Translation3d(0, 0, h) * Eigen::AngleAxisd(M_PI, Vec3::UnitX()) *
-             Eigen::Scaling(Vec3(w, w, 1)))
-                .matrix(),
-            35,
-            2,
-            {}};
+  Object li = Object::make("light", 0, 1,
+                           (Eigen::Translation3d(0, 0, h) * Eigen::AngleAxisd(M_PI, Vec3::UnitX()) *
+                            Eigen::Scaling(Vec3(w, w, 1)))
+                               .matrix(),
+                           35, 2);
   s.objects = {fl, li};
   Renderer r(s);
   // tiny field of view: every pixel sees the floor right under the light
@@ -222,8 +218,8 @@ Scene glassInFurnace(MaterialType glass_type, float roughness) {
   glass.roughness = roughness;
   glass.ior = 1.5f;
   s.materials.push_back(glass);
-  Object o{"ball", 1, 1, (Eigen::Translation3d(1.0, 0.5, 1.0) * Eigen::Scaling(0.4)).matrix(),
-           40,     2, {}};
+  Object o = Object::make(
+      "ball", 1, 1, (Eigen::Translation3d(1.0, 0.5, 1.0) * Eigen::Scaling(0.4)).matrix(), 40, 2);
   s.objects.push_back(o);
   return s;
 }

@@ -51,7 +51,7 @@ Scene quadScene(const Material& m) {
   s.materials = {m};
   Mat4 T = Mat4::Identity();
   T.diagonal() << 2, 2, 1, 1;
-  s.objects = {Object{"quad", 0, 0, T, 2, 1, {}}};
+  s.objects = {Object::make("quad", 0, 0, T, 2, 1)};
   return s;
 }
 
@@ -193,7 +193,7 @@ TEST(Surface, CylinderNormalsAreSmooth) {
   Material m;
   m.id = "grey";
   s.materials = {m};
-  s.objects = {Object{"cyl", 0, 0, Mat4::Identity(), 2, 1, {}}};
+  s.objects = {Object::make("cyl", 0, 0, Mat4::Identity(), 2, 1)};
   Renderer r(s);
   RenderOptions opt;
   opt.passes = static_cast<PassMask>(Pass::Normal);

@@ -24,8 +24,8 @@ Scene litScene() {
   glow.id = "glow";
   glow.emission = Vec3f(3, 2.5f, 2);
   s.materials = {white, glow};
-  Object floor{"floor", 0, 0, Mat4::Identity(), 2, 1, {}};
-  Object panel{"ceiling_light_1", 0, 1, Mat4::Identity(), 35, 2, {}};
+  Object floor = Object::make("floor", 0, 0, Mat4::Identity(), 2, 1);
+  Object panel = Object::make("ceiling_light_1", 0, 1, Mat4::Identity(), 35, 2);
   panel.T_world_object(2, 3) = 2.5;
   Object panel2 = panel;
   panel2.name = "ceiling_light_2";
