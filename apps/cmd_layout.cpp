@@ -13,6 +13,7 @@
 #include "core/progress.h"
 #include "procedural/apartment.h"
 #include "scene/layout_json.h"
+#include "scene/front3d_importer.h"
 #include "scene/layout_stats.h"
 #include "scene/light_xml.h"
 #include "scene/nyu40.h"
@@ -171,16 +172,42 @@ void registerLayout(CLI::App& app) {
 
   auto* import = layout->add_subcommand(
       "import",
-      "Write a mesh scene (OBJ, glTF, ...) as a layout.json with inline meshes, its materials, "
-      "textures (paths relative to the output) and NYU40 labels, ready for lights and motion");
+      "Write a scene as a layout.json: a mesh scene (OBJ, glTF, ... incl. SceneNet layouts: "
+      "--from obj) with its materials, textures and NYU40 labels, or a 3D-FRONT house JSON "
+      "(--from 3dfront, furniture from a 3D-FUTURE folder or as labelled boxes), ready for "
+      "lights and motion");
   auto import_args = std::make_shared<SceneArgs>();
   import_args->addTo(*import);
   auto out = std::make_shared<std::string>();
+  auto from = std::make_shared<std::string>();
+  auto models = std::make_shared<std::string>();
+  import
+      ->add_option("--from", *from,
+                   "obj (any Assimp format, SceneNet included) or 3dfront; default: 3dfront "
+                   "for .json, obj otherwise")
+      ->check(CLI::IsMember({"obj", "scenenet", "3dfront"}));
+  import->add_option("--models", *models,
+                     "3dfront: 3D-FUTURE model folder (<jid>/raw_model.obj); default: none, "
+                     "furniture becomes labelled boxes");
   import->add_option("--out", *out, "layout.json to write (atomically)")->required();
-  import->callback([import_args, out] {
-    if (import_args->isDefault())
-      throw InputError("", "--scene", "name the mesh file to import");
-  importScene(import_args->load(), *out);
+  import->callback([import_args, out, from, models] {
+    if (import_args->isDefault()) throw InputError("", "--scene", "name the file to import");
+  const std::string ext = std::filesystem::path(import_args->path).extension().string();
+  const std::string kind = !from->empty() ? *from : (ext == ".json" ? "3dfront" : "obj");
+  if (kind == "3dfront") {
+    Front3dOptions opt;
+    opt.models_dir = *models;
+    opt.label_map = import_args->labels;
+    Front3dReport report;
+    Scene s = importFront3d(import_args->path, opt, &report);
+    const std::string warn = report.summary();
+    if (!warn.empty())
+      std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(), warn.c_str());
+    importScene(std::move(s), *out);
+  } else {
+    if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
+    importScene(import_args->loadScene(), *out);
+  }
 });
 }  // namespace inet::app
 
