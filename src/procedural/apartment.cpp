@@ -503,7 +503,8 @@ class Builder {
     else
       side = std::fabs(line - rb.min().y()) < 1e-9 ? 2 : 3;
     const Vec3 pos = vertical ? Vec3(line, centre, z) : Vec3(centre, line, z);
-    add(m, placement(pos, wallYaw(side)), room, false);
+    const int piece = add(m, placement(pos, wallYaw(side)), room, false);
+    apt_.pieces[piece].rests_on = "wall";
   }
 
   // ---- furnishing ----
@@ -730,6 +731,9 @@ class Builder {
       for (const auto& h : m.hulls) clash = clash || penetrates(transformBox(h, T), room);
       if (clash) continue;
       const int piece = add(m, T, room, false);
+      apt_.pieces[piece].rests_on = "support";
+      apt_.pieces[piece].support = support;
+      apt_.pieces[piece].support_z = z;
       on_support_[support].push_back(fp);
       models_[piece] = m;
       yaw_[piece] = yaw;
@@ -783,6 +787,7 @@ class Builder {
       if (z + m.size.z() > apt_.plan.ceiling - 0.05) clash = true;
       if (clash) continue;
       const int piece = add(m, placement(Vec3(c.x(), c.y(), z), wallYaw(side)), s.index, false);
+      apt_.pieces[piece].rests_on = "wall";
       wall_side_[piece] = side;
       models_[piece] = m;
       return piece;
@@ -796,7 +801,8 @@ class Builder {
     FurnitureModel m = makeFurniture(cat, rng_);
     const Eigen::Vector2d c = s.interior.center();
     const double z = apt_.plan.ceiling - m.size.z();
-    add(m, placement(Vec3(c.x(), c.y(), z), 0.0), s.index, false);
+    const int piece = add(m, placement(Vec3(c.x(), c.y(), z), 0.0), s.index, false);
+    apt_.pieces[piece].rests_on = "ceiling";
   }
 
   void curtains(RoomState& s) {
@@ -829,7 +835,8 @@ class Builder {
       bool clash = false;
       for (const auto& h : m.hulls) clash = clash || penetrates(transformBox(h, T), s.index);
       if (clash) continue;
-      add(m, T, s.index, false);
+      const int piece = add(m, T, s.index, false);
+      apt_.pieces[piece].rests_on = "wall";
       // it hangs down to the floor: floor pieces keep out of its footprint
       s.floor_boxes.push_back(footprint(c, m.size.x(), m.size.y(), wallYaw(side)));
     }

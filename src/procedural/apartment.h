@@ -41,6 +41,11 @@ struct PlacedPiece {
   std::vector<Eigen::AlignedBox3d> hulls;  ///< world-space collision boxes
   bool on_floor = false;                   ///< stands on the floor (footprint blocks cameras)
   bool flat = false;                       ///< rugs: on the floor but walkable
+  /// What holds it up: "floor", "wall" (hung, incl. doors and windows in openings), "ceiling",
+  /// or "support" (standing on piece `support` at height `support_z`).
+  std::string rests_on = "floor";
+  int support = -1;
+  double support_z = 0.0;
 };
 
 struct Apartment {

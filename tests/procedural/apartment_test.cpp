@@ -80,6 +80,30 @@ void checkApartment(const Apartment& apt) {
       EXPECT_LE(h.max().z(), apt.plan.ceiling + 0.01) << p.name;
     }
   }
+  // every piece is held up: by the floor (its bottom at 0), by a support piece (its bottom at
+  // one of the support's surface heights, its footprint on the support's top), or hung on a
+  // wall or the ceiling
+  for (const PlacedPiece* p : furniture) {
+    Eigen::AlignedBox3d all;
+    for (const auto& h : p->hulls) all.extend(h);
+    if (p->rests_on == "floor") {
+      EXPECT_NEAR(all.min().z(), 0.0, 0.01) << p->name << " floats or sinks";
+    } else if (p->rests_on == "support") {
+      ASSERT_GE(p->support, 0) << p->name;
+      const PlacedPiece& s = apt.pieces[p->support];
+      EXPECT_NEAR(all.min().z(), p->support_z, 0.01) << p->name << " on " << s.name;
+      Eigen::AlignedBox3d top;
+      for (const auto& h : s.hulls) top.extend(h);
+      EXPECT_LE(p->support_z, top.max().z() + 0.01) << p->name;
+      EXPECT_GE(all.min().x(), top.min().x() - 0.01) << p->name << " overhangs " << s.name;
+      EXPECT_LE(all.max().x(), top.max().x() + 0.01) << p->name << " overhangs " << s.name;
+      EXPECT_GE(all.min().y(), top.min().y() - 0.01) << p->name << " overhangs " << s.name;
+      EXPECT_LE(all.max().y(), top.max().y() + 0.01) << p->name << " overhangs " << s.name;
+    } else {
+      EXPECT_TRUE(p->rests_on == "wall" || p->rests_on == "ceiling") << p->name;
+      if (p->rests_on == "ceiling") EXPECT_NEAR(all.max().z(), apt.plan.ceiling, 0.01) << p->name;
+    }
+  }
   for (size_t i = 0; i < furniture.size(); ++i)
     for (size_t j = i + 1; j < furniture.size(); ++j) {
       if (furniture[i]->flat || furniture[j]->flat) continue;  // rugs lie under things
