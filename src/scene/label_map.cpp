@@ -29,19 +29,31 @@ std::string compact(std::string_view s) {
   return out;
 }
 
-/// Lower-cased words between separators and digits: "Chair.003_left" -> {"chair", "left"}.
+/// Lower-cased words between separators, digits and camelCase boundaries:
+/// "Chair.003_left" -> {"chair", "left"}, "backWall" -> {"back", "wall"},
+/// "TVStand" -> {"tv", "stand"}.
 std::vector<std::string> tokens(std::string_view s) {
   std::vector<std::string> out;
   std::string cur;
-  for (char c : s) {
-    if (isSeparator(c) || std::isdigit(static_cast<unsigned char>(c))) {
-      if (!cur.empty()) out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  auto flush = [&] {
+    if (!cur.empty()) out.push_back(cur);
+    cur.clear();
+  };
+  for (size_t i = 0; i < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (isSeparator(s[i]) || std::isdigit(c)) {
+      flush();
+      continue;
     }
+    if (std::isupper(c) && i > 0) {
+      const auto prev = static_cast<unsigned char>(s[i - 1]);
+      const bool next_lower =
+          i + 1 < s.size() && std::islower(static_cast<unsigned char>(s[i + 1]));
+      if (std::islower(prev) || (std::isupper(prev) && next_lower)) flush();
+    }
+    cur += static_cast<char>(std::tolower(c));
   }
-  if (!cur.empty()) out.push_back(cur);
+  flush();
   return out;
 }
 

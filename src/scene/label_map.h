@@ -11,7 +11,8 @@
 // Matching of an object name, first hit wins:
 //   1. map entries: exact name (case-insensitive);
 //   2. map entries: the longest key that is a prefix of the name or equals one whole token of it
-//      (tokens split on '_', '-', '.', ' ' and digits; '_', '-', '.' and ' ' are ignored when
+//      (tokens split on '_', '-', '.', ' ', digits and camelCase boundaries, so "backWall" has
+//      the token "wall"; '_', '-', '.' and ' ' are ignored when
 //      testing prefixes, so the key "night_stand" matches "nightstand_left");
 //   3. the same two steps against the 41 NYU40 class names themselves, so "bed_2" -> bed even
 //      with an empty map.
