@@ -77,7 +77,9 @@ const LabelMap::Entry* bestMatch(const std::vector<LabelMap::Entry>& entries,
     const std::string ckey = compact(e.key);
     if (ckey.size() <= best_len) continue;  // ties keep the earlier entry
     bool hit = cname.starts_with(ckey);
-    for (size_t i = 0; !hit && i < toks.size(); ++i) hit = (toks[i] == ckey);
+    // a whole token, singular or plural ("walls", "curtains", "boxes")
+    for (size_t i = 0; !hit && i < toks.size(); ++i)
+      hit = toks[i] == ckey || toks[i] == ckey + "s" || toks[i] == ckey + "es";
     if (hit) {
       best = &e;
       best_len = ckey.size();
@@ -93,6 +95,13 @@ const std::vector<LabelMap::Entry>& builtinEntries() {
     for (int id = 1; id < kNyu40Count; ++id) v.push_back({std::string(nyu40Name(id)), id, 0});
     for (const char* alias : {"refrigerator", "fridge", "tv"})
       v.push_back({alias, *nyu40FromName(alias), 0});
+    // common names of indoor datasets that are not NYU40 names (SceneNet's "painting", ...)
+    const std::pair<const char*, const char*> more[] = {
+        {"painting", "picture"}, {"poster", "picture"},         {"frame", "picture"},
+        {"carpet", "floor_mat"}, {"rug", "floor_mat"},          {"couch", "sofa"},
+        {"wardrobe", "cabinet"}, {"cupboard", "cabinet"},       {"armchair", "chair"},
+        {"stool", "chair"},      {"nightstand", "night_stand"}, {"monitor", "television"}};
+    for (const auto& [alias, name] : more) v.push_back({alias, *nyu40FromName(name), 0});
     return v;
   }();
   return entries;

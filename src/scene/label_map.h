@@ -14,8 +14,10 @@
 //      (tokens split on '_', '-', '.', ' ', digits and camelCase boundaries, so "backWall" has
 //      the token "wall"; '_', '-', '.' and ' ' are ignored when
 //      testing prefixes, so the key "night_stand" matches "nightstand_left");
-//   3. the same two steps against the 41 NYU40 class names themselves, so "bed_2" -> bed even
-//      with an empty map.
+//   3. the same two steps against the 41 NYU40 class names themselves and a few common
+//      aliases (fridge, tv, painting, rug, carpet, couch, wardrobe, armchair, nightstand, ...),
+//      so "bed_2" -> bed and "room_walls" -> wall even with an empty map.
+// A token also matches a key in its plural form ("walls", "boxes").
 #include <optional>
 #include <string>
 #include <string_view>

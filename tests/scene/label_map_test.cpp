@@ -64,8 +64,16 @@ TEST(LabelMap, PrefixAndTokenMatches) {
   EXPECT_EQ(map.lookup("painting.002"), id("picture"));        // SceneNet style
   EXPECT_EQ(map.lookup("top_painting_inner"), id("picture"));  // whole token
   EXPECT_EQ(map.lookup("left-speaker-2"), id("otherprop"));
-  // "speakers" is neither a prefix-of nor a token-equal match for other keys
-  EXPECT_EQ(map.lookup("big_speakers"), std::nullopt);
+  // a whole token in the plural matches too; a longer word containing the key does not
+  EXPECT_EQ(map.lookup("big_speakers"), id("otherprop"));
+  EXPECT_EQ(map.lookup("big_speakerbox"), std::nullopt);
+  // built-in names and aliases: plural walls, camelCase, dataset names
+  const LabelMap none;
+  EXPECT_EQ(none.lookup("room_walls"), id("wall"));
+  EXPECT_EQ(none.lookup("backWall"), id("wall"));
+  EXPECT_EQ(none.lookup("painting.004"), id("picture"));
+  EXPECT_EQ(none.lookup("Couch_2"), id("sofa"));
+  EXPECT_EQ(none.lookup("curtains"), id("curtain"));
 }
 
 TEST(LabelMap, LongestKeyWins) {
