@@ -8,6 +8,7 @@
 #include <Random123/philox.h>
 
 #include <cstdint>
+#include <string_view>
 
 namespace inet {
 
@@ -33,6 +34,8 @@ class CounterRng {
     uint64_t hi = nextU32(), lo = nextU32();
     return static_cast<double>(((hi << 32) | lo) >> 11) * 0x1p-53;
   }
+  /// Uniform double in [lo, hi).
+  double uniformDouble(double lo, double hi) { return lo + (hi - lo) * uniformDouble(); }
 
  private:
   void refill() {
@@ -46,5 +49,13 @@ class CounterRng {
   r123::Philox4x32::ctr_type out_{};
   int used_ = 4;
 };
+
+/// 64-bit FNV-1a of a string: a hash that is the same on every run and platform (std::hash is
+/// not), for seeds derived from names.
+inline uint64_t stableHash(std::string_view s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
 
 }  // namespace inet

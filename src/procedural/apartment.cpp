@@ -26,16 +26,6 @@ constexpr double kMaxOccupied = 0.35;  ///< share of a room's floor furniture ma
 constexpr double kRobotRadius = 0.25;  ///< clearance kept for cameras (reachableRooms)
 constexpr double kGridCell = 0.1;
 
-double uniform(CounterRng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniformDouble();
-}
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 bool known(const std::string& category) {
   static const std::set<std::string> names(furnitureCategories().begin(),
                                            furnitureCategories().end());
@@ -157,14 +147,13 @@ class Builder {
         }
       } else {
         const TextureSet set =
-            makeTexture(spec.texture, m.albedo, fnv1a(spec.name), opt_.texture_size);
+            makeTexture(spec.texture, m.albedo, stableHash(spec.name), opt_.texture_size);
         files = writeTexture(set, texture_dir_, spec.name);
       }
       auto ref = [&](const std::string& path) {
         TextureRef r;
         r.path = path;
         r.file = fs::proximate(path, layout_dir_).generic_string();
-        apt_.texture_files.push_back(path);
         return r;
       };
       // the image carries the colour (its mean is spec.albedo); a translucent material keeps its
@@ -345,11 +334,11 @@ class Builder {
   void shell() {
     const FloorPlan& plan = apt_.plan;
     const double t = plan.wall_thickness, H = plan.ceiling;
-    const float paint = static_cast<float>(uniform(rng_, 0.55, 0.8));
+    const float paint = static_cast<float>(rng_.uniformDouble(0.55, 0.8));
     const MaterialSpec wall =
         plain("wall_paint",
-              Vec3f(paint, paint * static_cast<float>(uniform(rng_, 0.95, 1.0)),
-                    paint * static_cast<float>(uniform(rng_, 0.85, 0.98))),
+              Vec3f(paint, paint * static_cast<float>(rng_.uniformDouble(0.95, 1.0)),
+                    paint * static_cast<float>(rng_.uniformDouble(0.85, 0.98))),
               TextureKind::Plaster, 1.5f);
     const MaterialSpec ceiling =
         plain("ceiling_white", Vec3f(0.8f, 0.8f, 0.8f), TextureKind::None, 1.f);
@@ -420,7 +409,7 @@ class Builder {
       const bool carpet = type == "kids_room" || type == "elderly_room";
       MaterialSpec floor;
       if (wet) {
-        const float g = static_cast<float>(uniform(rng_, 0.35, 0.75));
+        const float g = static_cast<float>(rng_.uniformDouble(0.35, 0.75));
         floor = plain(fmt::format("floor_tiles_{}", i % 3), Vec3f(g, g * 0.97f, g * 0.92f),
                       TextureKind::Tiles, 1.2f, MaterialType::Plastic, 0.3f);
       } else if (carpet) {
@@ -721,7 +710,7 @@ class Builder {
       const Eigen::Vector2d lo = top.min() + half + Eigen::Vector2d::Constant(margin);
       const Eigen::Vector2d hi = top.max() - half - Eigen::Vector2d::Constant(margin);
       if ((hi - lo).minCoeff() < 0) return -1;
-      const Eigen::Vector2d c(uniform(rng_, lo.x(), hi.x()), uniform(rng_, lo.y(), hi.y()));
+      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()), rng_.uniformDouble(lo.y(), hi.y()));
       const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
       bool clash = false;
       for (const Box2& o : on_support_[support]) clash = clash || overlaps(fp, o, -0.01);
@@ -761,7 +750,7 @@ class Builder {
         const double lo = vertical ? in.min().y() : in.min().x();
         const double hi = vertical ? in.max().y() : in.max().x();
         if (hi - lo < m.size.x() + 0.2) continue;
-        u = uniform(rng_, lo + m.size.x() / 2 + 0.1, hi - m.size.x() / 2 - 0.1);
+        u = rng_.uniformDouble(lo + m.size.x() / 2 + 0.1, hi - m.size.x() / 2 - 0.1);
       }
       const double d = m.size.y();
       Eigen::Vector2d c;
@@ -1029,8 +1018,8 @@ class Builder {
     box("ground", "ground", 0, -1,
         plain("ground_grass", Vec3f(0.12f, 0.16f, 0.08f), TextureKind::None, 1.f),
         Vec3(c.x() - 30, c.y() - 30, -0.30), Vec3(c.x() + 30, c.y() + 30, -0.25));
-    const double elevation = uniform(rng_, 25, 55) * kPi / 180;
-    const double azimuth = uniform(rng_, 0, 2 * kPi);
+    const double elevation = rng_.uniformDouble(25, 55) * kPi / 180;
+    const double azimuth = rng_.uniformDouble(0, 2 * kPi);
     const Vec3 to_sun(std::cos(elevation) * std::cos(azimuth),
                       std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
     Light sky;
@@ -1038,7 +1027,7 @@ class Builder {
     sky.type = LightType::Sky;
     sky.sky_model = SkyModel::Preetham;
     sky.direction = -to_sun;
-    sky.turbidity = static_cast<float>(uniform(rng_, 2.5, 4));
+    sky.turbidity = static_cast<float>(rng_.uniformDouble(2.5, 4));
     sky.intensity = 40.f;
     apt_.scene.lights.push_back(sky);
     Light sun;

@@ -52,7 +52,6 @@ struct Apartment {
   Scene scene;
   FloorPlan plan;
   std::vector<PlacedPiece> pieces;
-  std::vector<std::string> texture_files;  ///< written images (absolute paths)
 };
 
 /// Builds the apartment of `opt.seed`. Texture images go to `texture_dir` (created; the

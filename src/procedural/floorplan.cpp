@@ -11,9 +11,6 @@
 namespace inet {
 namespace {
 
-double uniform(CounterRng& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniformDouble();
-}
 
 /// Target floor area range (m^2) of each room type.
 std::pair<double, double> areaRange(const std::string& type) {
@@ -117,7 +114,7 @@ bool sharedWall(const Eigen::AlignedBox2d& p, const Eigen::AlignedBox2d& q, bool
 /// A door of width w on [lo, hi], near one end (doors sit near corners) with 0.15 m to spare.
 void placeOpening(double lo, double hi, double w, CounterRng& rng, double& from, double& to) {
   const double slack = std::max(0.0, hi - lo - w - 0.3);
-  from = lo + 0.15 + (rng.uniform() < 0.5f ? 0.0 : slack) * uniform(rng, 0.0, 1.0);
+  from = lo + 0.15 + (rng.uniform() < 0.5f ? 0.0 : slack) * rng.uniformDouble(0.0, 1.0);
   to = from + w;
 }
 
@@ -192,14 +189,14 @@ std::vector<std::string> roomProgram(int count, CounterRng& rng) {
 FloorPlan makeFloorPlan(const std::vector<std::string>& program, CounterRng& rng) {
   INET_CHECK(!program.empty());
   FloorPlan plan;
-  plan.ceiling = uniform(rng, 2.55, 2.9);
+  plan.ceiling = rng.uniformDouble(2.55, 2.9);
   for (int attempt = 0; attempt < 200; ++attempt) {
     std::vector<Item> items;
     double total = 0;
     for (size_t i = 0; i < program.size(); ++i) {
       auto [lo, hi] = areaRange(program[i]);
-      double a = uniform(rng, lo, hi);
-      if (program.size() == 1) a = uniform(rng, 28, 42);  // a studio: one big room
+      double a = rng.uniformDouble(lo, hi);
+      if (program.size() == 1) a = rng.uniformDouble(28, 42);  // a studio: one big room
       items.push_back({static_cast<int>(i), a});
       total += a;
     }
@@ -207,7 +204,7 @@ FloorPlan makeFloorPlan(const std::vector<std::string>& program, CounterRng& rng
                      [](const Item& x, const Item& y) { return x.area > y.area; });
     // elongated footprints when compact ones keep failing (a small bathroom beside one big room
     // needs a long, narrow flat)
-    const double aspect = uniform(rng, 1.0, attempt < 60 ? 1.8 : 3.5);
+    const double aspect = rng.uniformDouble(1.0, attempt < 60 ? 1.8 : 3.5);
     const double w = std::round(std::sqrt(total * aspect) * 100) / 100;
     const double h = std::round(total / w * 100) / 100;
     plan.footprint = Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(w, h));
@@ -269,7 +266,7 @@ FloorPlan makeFloorPlan(const std::vector<std::string>& program, CounterRng& rng
       d.b = best->b;
       d.vertical = best->vertical;
       d.line = best->line;
-      placeOpening(best->lo, best->hi, uniform(rng, 0.8, 0.9), rng, d.from, d.to);
+      placeOpening(best->lo, best->hi, rng.uniformDouble(0.8, 0.9), rng, d.from, d.to);
       plan.doors.push_back(d);
     }
     if (std::find(in.begin(), in.end(), false) != in.end()) continue;  // not connected: redraw
@@ -314,12 +311,12 @@ FloorPlan makeFloorPlan(const std::vector<std::string>& program, CounterRng& rng
                       : side == 1 ? Eigen::Vector2d(1, 0)
                       : side == 2 ? Eigen::Vector2d(0, -1)
                                   : Eigen::Vector2d(0, 1);
-          const double width = std::min(hi - lo - 0.6, uniform(rng, 0.9, 1.8));
+          const double width = std::min(hi - lo - 0.6, rng.uniformDouble(0.9, 1.8));
           const double centre = 0.5 * (lo + hi);
           w.from = centre - width / 2;
           w.to = centre + width / 2;
           const bool balcony = plan.rooms[i].type == "balcony";
-          w.sill = balcony ? 0.3 : uniform(rng, 0.8, 1.0);
+          w.sill = balcony ? 0.3 : rng.uniformDouble(0.8, 1.0);
           w.top = std::min(plan.ceiling - 0.3, 2.2);
           // not where the front door is
           bool clash = false;

@@ -50,7 +50,7 @@ class Builder {
   Builder(CounterRng& rng, const FurnitureSizeHint& hint, FurnitureModel& model)
       : rng_(rng), hint_(hint), m_(model) {}
 
-  double uniform(double lo, double hi) { return lo + (hi - lo) * rng_.uniformDouble(); }
+  double uniform(double lo, double hi) { return rng_.uniformDouble(lo, hi); }
   int integer(int lo, int hi);  ///< uniform in [lo, hi]
   bool chance(double p) { return rng_.uniformDouble() < p; }
   /// Nominal width / depth / height: uniform in [lo, hi] unless the size hint fixes it.

@@ -143,26 +143,23 @@ void EmbreeScene::setWindow(TimeNs open_ns, TimeNs span_ns) {
     rtcCommitGeometry(m.instance);
     const Mat4 T_mid = m.motion.transformAt(
         1e-9 * (static_cast<double>(open_ns) + 0.5 * static_cast<double>(span_ns)));
-    setObjectTransform(objects_[m.object], T_mid);
+    ObjectShading& s = objects_[m.object];
+    setObjectTransform(s, T_mid);
+    s.normal_to_world = s.vertex_normal_to_world;  // an instance: Embree's Ng is in object space
   }
   rtcCommitScene(scene_);
   checkDevice(device_, "moving objects");
 }
 
-void EmbreeScene::setObjectTransform(ObjectShading& s, const Mat4& T_world_object) const {
-  const Eigen::Matrix3d L = T_world_object.block<3, 3>(0, 0);
+void EmbreeScene::setObjectTransform(ObjectShading& s, const Mat4& T_world_object) {
+  const Mat3 L = T_world_object.block<3, 3>(0, 0);
   s.linear = L.cast<float>();
   s.vertex_normal_to_world = L.inverse().transpose().cast<float>();
-  s.normal_to_world = s.vertex_normal_to_world;  // moving objects are instances: Ng in object space
-  s.translation = T_world_object.block<3, 1>(0, 3).cast<float>();
 }
 
 void EmbreeScene::setUpShading(const Object& o, const Mesh& mesh, const Material& mat,
                                ObjectShading& s) {
-  const Mat3 L = o.T_world_object.block<3, 3>(0, 0);
-  s.linear = L.cast<float>();
-  s.vertex_normal_to_world = L.inverse().transpose().cast<float>();
-  s.translation = o.T_world_object.block<3, 1>(0, 3).cast<float>();
+  setObjectTransform(s, o.T_world_object);
   s.uv_scale = mat.uv_scale;
   s.roughness = mat.roughness;
   const std::string field = "materials['" + mat.id + "']";
@@ -192,7 +189,7 @@ void EmbreeScene::setUpShading(const Object& o, const Mesh& mesh, const Material
 }
 
 void EmbreeScene::surface(int object, unsigned prim, float u, float v, const Vec3f& ng,
-                          const Vec3f& p, const Vec3f& d, float footprint, SurfacePoint& sp,
+                          const Vec3f& d, float footprint, SurfacePoint& sp,
                           bool normal_map) const {
   const ObjectShading& s = objects_[object];
   sp.ng = ng;

@@ -40,7 +40,6 @@ struct ObjectShading {
   const MeshAttributes* attributes = nullptr;
   Eigen::Matrix3f linear = Eigen::Matrix3f::Identity();  ///< object-to-world linear part
   Eigen::Matrix3f vertex_normal_to_world = Eigen::Matrix3f::Identity();  ///< its inv. transpose
-  Eigen::Vector3f translation = Eigen::Vector3f::Zero();                 ///< object-to-world
   float sphere_radius = 0.f;  ///< > 0: analytic sphere (texture coordinates from its angles)
   const Texture* albedo_map = nullptr;
   const Texture* roughness_map = nullptr;
@@ -84,12 +83,12 @@ class EmbreeScene {
   }
 
   /// Shading at a hit of `object` (triangle `prim`, barycentrics u, v; unit world geometric
-  /// normal `ng`) at world point `p`, seen along unit direction `d`. `footprint` is the width in
+  /// normal `ng`), seen along unit direction `d`. `footprint` is the width in
   /// metres of the pixel's footprint perpendicular to the ray (ray cone, Akenine-Moller et al.
   /// 2019), which picks the texture mip level; 0 reads the finest level. `normal_map` = false
   /// leaves a material's normal map out (the ground-truth normal pass).
-  void surface(int object, unsigned prim, float u, float v, const Vec3f& ng, const Vec3f& p,
-               const Vec3f& d, float footprint, SurfacePoint& sp, bool normal_map = true) const;
+  void surface(int object, unsigned prim, float u, float v, const Vec3f& ng, const Vec3f& d,
+               float footprint, SurfacePoint& sp, bool normal_map = true) const;
   /// True when some object moves (Object::motion). Every object is then an instance, so that a
   /// new exposure window only rebuilds the top level.
   bool hasMotion() const { return !moving_.empty(); }
@@ -111,7 +110,8 @@ class EmbreeScene {
  private:
   void addTriangleMesh(const Mesh& mesh, const Mat4* T_world_object);
   void setUpShading(const Object& o, const Mesh& mesh, const Material& mat, ObjectShading& s);
-  void setObjectTransform(ObjectShading& s, const Mat4& T_world_object) const;
+  /// Sets the shading transforms (linear part, vertex-normal matrix) of an object's placement.
+  static void setObjectTransform(ObjectShading& s, const Mat4& T_world_object);
   RTCScene meshScene(int mesh_index, const Scene& scene);
   void buildLights(const Scene& scene);
 

@@ -45,11 +45,10 @@ struct PassWriter {
   }
 
   /// One hit. t: ray parameter; z_per_t: camera-frame z per unit t (1 for pinhole rays, whose
-  /// direction has z = 1, so the z-depth is exactly t); d_len: |d_camera|; o, d_world: the
-  /// world ray; prim, u, v, ng_object: Embree's hit; R_cw: world-to-camera rotation of the pose
+  /// direction has z = 1, so the z-depth is exactly t); d_len: |d_camera|; d_world: the
+  /// world ray's direction; prim, u, v, ng_object: Embree's hit; R_cw: world-to-camera rotation of the pose
   /// this pixel was traced from; spread: the angle of one pixel (texture footprint).
-  void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& o,
-           const Eigen::Vector3f& d_world, int object, unsigned prim, float u, float v,
+  void hit(size_t i, float t, float z_per_t, float d_len, const Eigen::Vector3f& d_world, int object, unsigned prim, float u, float v,
            const Vec3f& ng_object, const Eigen::Matrix3f& R_cw, float spread) const {
     const ObjectShading& s = scene.object(object);
     if (depth_z) depth_z[i] = z_per_t == 1.f ? t : std::max(0.f, t * z_per_t);
@@ -67,7 +66,7 @@ struct PassWriter {
       // detail the depth pass does not have)
       SurfacePoint sp;
       const float dist = t * d_len;
-      scene.surface(object, prim, u, v, ng, o + t * d_world, d_world / d_len, spread * dist, sp,
+      scene.surface(object, prim, u, v, ng, d_world / d_len, spread * dist, sp,
                     /*normal_map=*/false);
       n = sp.ns;
       a = sp.albedo;
@@ -204,7 +203,6 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
               }
               int object = scene.objectOf(rh.hit.geomID[k], rh.hit.instID[0][k]);
               writer.hit(i, rh.ray.tfar[k], z_per_t[k], d_len[k],
-                         Eigen::Vector3f(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]),
                          Eigen::Vector3f(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]), object,
                          rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k],
                          Vec3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),

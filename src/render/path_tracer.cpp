@@ -296,7 +296,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     // Texture footprint: a ray cone of the camera's pixel spread along the whole path so far
     // (pbrt-v4 likewise reuses the camera's footprint for indirect rays).
     SurfacePoint sp;
-    scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, p, ray.d,
+    scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
                   pixel_spread * path_length, sp);
     const BsdfParams& bsdf = sp.bsdf;
     const bool lambert = bsdf.type == BsdfType::Lambertian;

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "scene/label_map.h"
 #include "scene/nyu40.h"
 
@@ -240,9 +241,7 @@ TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string
       ++report.skipped_textures;
       return {};
     }
-    // FNV-1a of the material name: stable across runs and platforms (std::hash is not)
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : material) h = (h ^ c) * 1099511628211ull;
+    const uint64_t h = stableHash(material);  // the same image on every run
     path = images[h % images.size()];
   }
   if (!fs::is_regular_file(path, ec)) {

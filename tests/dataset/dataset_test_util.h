@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../temp_dir.h"
 #include "dataset/sequence_writer.h"
 #include "render/camera.h"
 #include "render/frame.h"
@@ -20,31 +21,6 @@
 namespace inet::test {
 
 namespace fs = std::filesystem;
-
-/// A fresh folder under the system temp dir, removed with its contents on destruction.
-class TempDir {
- public:
-  explicit TempDir(const std::string& tag) {
-    path_ = fs::temp_directory_path() / ("inet_dataset_" + tag + "_" + std::to_string(::getpid()) +
-                                         "_" + std::to_string(counter()++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& s) const { return path_ / s; }
-
- private:
-  static int& counter() {
-    static int c = 0;
-    return c;
-  }
-  fs::path path_;
-};
 
 inline std::string readBytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 
+#include "../temp_dir.h"
 #include "core/atomic_file.h"
 #include "render/renderer.h"
 #include "scene/layout_json.h"
@@ -22,23 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    static int n = 0;
-    path_ = fs::temp_directory_path() /
-            ("inet_apartment_test_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 Apartment build(uint64_t seed, const fs::path& dir, const fs::path& textures = {}) {
   ApartmentOptions opt;
@@ -101,7 +86,9 @@ void checkApartment(const Apartment& apt) {
       EXPECT_LE(all.max().y(), top.max().y() + 0.01) << p->name << " overhangs " << s.name;
     } else {
       EXPECT_TRUE(p->rests_on == "wall" || p->rests_on == "ceiling") << p->name;
-      if (p->rests_on == "ceiling") EXPECT_NEAR(all.max().z(), apt.plan.ceiling, 0.01) << p->name;
+      if (p->rests_on == "ceiling") {
+        EXPECT_NEAR(all.max().z(), apt.plan.ceiling, 0.01) << p->name;
+      }
     }
   }
   for (size_t i = 0; i < furniture.size(); ++i)

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "../temp_dir.h"
 #include "core/image_io.h"
 #include "render/renderer.h"
 #include "render/texture.h"
@@ -22,21 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr int kSize = 64;
 
-class TextureDir {
- public:
-  TextureDir() {
-    path_ = fs::temp_directory_path() / ("inet_surface_test_" + std::to_string(::getpid()));
-    fs::create_directories(path_);
-  }
-  ~TextureDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 double srgbDecode(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -99,8 +86,8 @@ ImageU8 colourTexels() {
 }
 
 TEST(Surface, AlbedoPassReadsTheTextureAtEachPixelsCoordinate) {
-  TextureDir dir;
-  const std::string png = dir.file("texels.png");
+  TempDir dir;
+  const std::string png = (dir / "texels.png").string();
   writePng(png, colourTexels());
   Frame f = renderPasses(quadScene(textured(png)), static_cast<PassMask>(Pass::Albedo));
   TextureCache cache;
@@ -122,17 +109,17 @@ TEST(Surface, AlbedoPassReadsTheTextureAtEachPixelsCoordinate) {
 }
 
 /// 8 x 8 texels: a checkerboard of 2 x 2-texel squares, black and white.
-std::string writeChecker(const TextureDir& dir) {
+std::string writeChecker(const TempDir& dir) {
   ImageU8 img(8, 8, 1);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) img.at(x, y) = ((x / 2 + y / 2) % 2) ? 255 : 0;
-  const std::string png = dir.file("checker.png");
+  const std::string png = (dir / "checker.png").string();
   writePng(png, img);
   return png;
 }
 
 TEST(Surface, MipLevelFollowsThePixelFootprint) {
-  TextureDir dir;
+  TempDir dir;
   const std::string png = writeChecker(dir);
   // A pixel covers 1/64 of the quad's uv range. uv_scale 32: 32 x 8 = 256 texels across 64 px,
   // 4 texels per pixel: the footprint selects level 2 (2 x 2 texels, all grey 0.5). A renderer
@@ -251,7 +238,7 @@ TEST(Surface, NormalMapTiltsTheShadingNormal) {
   // A constant normal map (sin 40, 0, cos 40) in tangent space. The quad's tangent (dp/du) is
   // +X and bitangent (dp/dv) +Y, so the shading normal leans 40 degrees towards +X and the
   // sunlit floor's radiance drops from a/pi E to a/pi E cos 40.
-  TextureDir dir;
+  TempDir dir;
   const double tilt = 40.0 * M_PI / 180.0;
   ImageF map(2, 2, 3);
   for (size_t i = 0; i < map.pixelCount(); ++i) {
@@ -259,7 +246,7 @@ TEST(Surface, NormalMapTiltsTheShadingNormal) {
     map.data[3 * i + 1] = 0.5f;
     map.data[3 * i + 2] = static_cast<float>(0.5 * (std::cos(tilt) + 1));
   }
-  const std::string exr = dir.file("normal.exr");
+  const std::string exr = (dir / "normal.exr").string();
   writeExr(exr, map, {"R", "G", "B"});
   Material m;
   m.id = "quad";
@@ -275,8 +262,8 @@ TEST(Surface, PathTracerShadesWithTheTexturedAlbedo) {
   // albedo pass must agree: the bilinear texture is linear across each pixel (its kinks lie on
   // pixel edges), so the pixel's area average equals the centre sample; the samples estimate
   // that average (256 samples) to within 1e-3, 4% of the largest change across one pixel.
-  TextureDir dir;
-  const std::string png = dir.file("texels.png");
+  TempDir dir;
+  const std::string png = (dir / "texels.png").string();
   writePng(png, colourTexels());
   Scene s = quadScene(textured(png));
   Light sun;

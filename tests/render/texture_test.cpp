@@ -13,6 +13,7 @@
 #include <random>
 
 #include "../core/jpeg_test_util.h"
+#include "../temp_dir.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -22,25 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using Eigen::Vector2f;
 
-/// A fresh folder under the system temp folder, removed with its contents at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("inet_texture_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 double srgbEotf(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);

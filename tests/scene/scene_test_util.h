@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "../temp_dir.h"
 #include "core/error.h"
 #include "scene/scene.h"
 
@@ -35,36 +36,6 @@ std::string errorOf(F f) {
 inline std::filesystem::path sharedDir() {
   return std::filesystem::path(INET_SHARED_DIR);
 }
-
-/// A fresh folder under the system temp folder, removed with everything in it at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = std::filesystem::temp_directory_path() /
-            ("inet_scene_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const std::filesystem::path& path() const { return path_; }
-  /// Writes `text` to `name` inside the folder (creating subfolders) and returns the full path.
-  std::string write(const std::string& name, const std::string& text) const {
-    std::filesystem::path p = path_ / name;
-    std::filesystem::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-
- private:
-  std::filesystem::path path_;
-};
 
 inline bool sameBits(double a, double b) {
   return a == b && std::signbit(a) == std::signbit(b);
