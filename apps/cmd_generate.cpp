@@ -21,6 +21,9 @@
 #include "render/renderer.h"
 #include "render/shutter.h"
 #include "trajectory/builtin_trajectory.h"
+#include "trajectory/formats.h"
+#include "trajectory/free_space.h"
+#include "trajectory/random_trajectory.h"
 
 namespace inet::app {
 namespace {
@@ -35,6 +38,7 @@ extern "C" void onSignal(int) {
 struct GenerateArgs {
   SceneArgs scene;
   std::string trajectory;
+  MotionArgs motion;
   int frames = 25;
   bool frames_set = false;
   double fps = 25.0;
@@ -67,23 +71,56 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-Trajectory loadTrajectory(const GenerateArgs& a) {
-  if (a.trajectory.empty()) {
-    if (!a.scene.isDefault())
-      throw InputError(
-          a.scene.path, "--trajectory",
-          "required with --layout (the built-in camera path only fits the built-in room)");
-    return builtinTrajectory(a.frames, a.fps);
+/// The camera path of a sequence: one pose per frame, and the finer path that motion blur and
+/// rolling shutter interpolate (the frames themselves for a file).
+struct CameraPath {
+  Trajectory frames;
+  Trajectory path;
+  std::string description;  ///< for meta.json
+};
+
+bool isMotionType(const std::string& s) {
+  return s == "two-body" || s == "hand-held" || s == "look-forward";
+}
+
+CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
+  CameraPath out;
+  if (a.trajectory.empty() && a.scene.isDefault()) {
+    out.frames = builtinTrajectory(a.frames, a.fps);
+    out.path = out.frames;
+    out.description = "built-in orbit of the default room";
+    return out;
   }
-  Trajectory traj = readTumTrajectory(a.trajectory);
+  if (a.trajectory.empty() || isMotionType(a.trajectory)) {
+    const MotionType type = parseMotionType(a.trajectory.empty() ? "two-body" : a.trajectory,
+                                            "--trajectory");
+    RandomTrajectoryOptions opt = a.motion.options(type, a.seed, a.frames, a.fps);
+    FreeSpace space(scene, {}, a.scene.path);
+    RandomTrajectory traj;
+    try {
+      traj = generateRandomTrajectory(space, opt, a.scene.path);
+    } catch (const InputError& e) {
+      throw InputError(e.file(), e.field(), e.problem() + "; give a camera path: --trajectory FILE");
+    }
+    out.frames = std::move(traj.frames);
+    out.path = std::move(traj.dense);
+    out.description = fmt::format("{} random trajectory, seed {}, v_mult {:.4f}, w_mult {:.4f}, "
+                                  "clearance {} m",
+                                  motionTypeName(type), a.seed, traj.v_mult, traj.w_mult,
+                                  opt.clearance);
+    return out;
+  }
+  out.frames = readTrajectory(a.trajectory);
   if (a.frames_set) {
-    if (static_cast<size_t>(a.frames) > traj.size())
-      throw InputError(
-          a.trajectory, "--frames",
-          fmt::format("asks for {} frames but the trajectory has {} poses", a.frames, traj.size()));
-    traj.poses.resize(a.frames);
+    if (static_cast<size_t>(a.frames) > out.frames.size())
+      throw InputError(a.trajectory, "--frames",
+                       fmt::format("asks for {} frames but the trajectory has {} poses", a.frames,
+                                   out.frames.size()));
+    out.frames.poses.resize(a.frames);
   }
-  return traj;
+  out.path = out.frames;
+  out.description = fs::path(a.trajectory).filename().string();
+  return out;
 }
 
 void validateArgs(const GenerateArgs& a) {
@@ -152,37 +189,38 @@ PassMask lensPasses(PassMask passes, LensType type) {
 }
 
 /// The exposure of frame k: centred on the frame's timestamp, poses interpolated along the
-/// trajectory (held at its ends). A zero shutter gives a static camera.
-CameraExposure exposureAt(const Trajectory& traj, size_t k, const Shutter& shutter) {
-  const TimeNs t = traj.poses[k].t_ns, half = (shutter.exposure_ns + shutter.readout_ns) / 2;
+/// camera path (held at its ends). A zero shutter gives a static camera.
+CameraExposure exposureAt(const CameraPath& cam, size_t k, const Shutter& shutter) {
+  const TimedPose& frame = cam.frames.poses[k];
+  const TimeNs t = frame.t_ns, half = (shutter.exposure_ns + shutter.readout_ns) / 2;
   // scene time (moving objects) runs from the first frame's timestamp
   CameraExposure ex =
-      CameraExposure::fixed(traj.poses[k].T_world_camera, t - half - traj.poses.front().t_ns);
+      CameraExposure::fixed(frame.T_world_camera, t - half - cam.frames.poses.front().t_ns);
   ex.shutter = shutter;
   if (half > 0) {
     const TimeNs open = t - half, close = open + shutter.exposure_ns + shutter.readout_ns;
-    interpolatePoseAt(traj.poses, open, ex.T_world_camera_open);
-    interpolatePoseAt(traj.poses, close, ex.T_world_camera_close);
-    // the trajectory's own samples inside the window (the frame's pose among them), so the
-    // camera follows the path rather than the chord and the mid-exposure pose is exact; the
-    // poses are sorted, so walk out from frame k instead of scanning the whole trajectory
-    size_t first = k;
-    while (first > 0 && traj.poses[first - 1].t_ns > open) --first;
-    for (size_t i = first; i < traj.size() && traj.poses[i].t_ns < close; ++i)
-      ex.knots.emplace_back(traj.poses[i].t_ns - open, traj.poses[i].T_world_camera);
+    const auto& path = cam.path.poses;
+    interpolatePoseAt(path, open, ex.T_world_camera_open);
+    interpolatePoseAt(path, close, ex.T_world_camera_close);
+    // the path's own samples inside the window (the frame's pose among them when the path is
+    // the frames), so the camera follows the path rather than the chord
+    auto first = std::upper_bound(path.begin(), path.end(), open,
+                                  [](TimeNs v, const TimedPose& p) { return v < p.t_ns; });
+    for (auto it = first; it != path.end() && it->t_ns < close; ++it)
+      ex.knots.emplace_back(it->t_ns - open, it->T_world_camera);
   }
   return ex;
 }
 
-nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const RenderOptions& opt) {
+nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const RenderOptions& opt,
+                          const CameraPath& cam) {
   // Only what determines the output bytes: no thread count, no output path, no clock time.
   nlohmann::json m;
   m["tool"] = {{"name", "interiornet"}, {"version", version()}};
   m["layout"] = {{"name", scene.name},
                  {"source", a.scene.isDefault() ? std::string("built-in default room")
                                                 : fs::path(a.scene.path).filename().string()}};
-  m["trajectory"] = a.trajectory.empty() ? std::string("built-in orbit of the default room")
-                                         : fs::path(a.trajectory).filename().string();
+  m["trajectory"] = cam.description;
   m["render"] = {{"integrator", opt.integrator},
                  {"spp", opt.spp},
                  {"max_bounces", opt.max_bounces},
@@ -215,7 +253,8 @@ void runGenerate(const GenerateArgs& a) {
   std::vector<std::string> formats = splitList(a.formats);
   // Load and check every input before anything is written.
   Scene scene = a.scene.load();
-  Trajectory traj = loadTrajectory(a);
+  const CameraPath cam = loadTrajectory(a, scene);
+  const Trajectory& traj = cam.frames;
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
@@ -230,7 +269,7 @@ void runGenerate(const GenerateArgs& a) {
   spec.lens = lens;
   spec.passes = passes;
   spec.rgb_exr = a.hdr;
-  spec.meta = provenance(a, scene, opt);
+  spec.meta = provenance(a, scene, opt, cam);
   SequenceWriter writer(spec, traj, formats);
 
   Renderer renderer(scene, opt.integrator);
@@ -260,7 +299,7 @@ void runGenerate(const GenerateArgs& a) {
       throw CLI::RuntimeError(130);
     }
     if (!complete[k]) {
-      renderer.render(lens, exposureAt(traj, k, shutter), opt, static_cast<uint32_t>(k), frame);
+      renderer.render(lens, exposureAt(cam, k, shutter), opt, static_cast<uint32_t>(k), frame);
       const bool respond = !a.response.identity() && has(passes, Pass::Rgb);
       if (respond) shown = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
       writer.writeFrame(k, frame, respond ? &shown : nullptr);
@@ -283,12 +322,15 @@ void registerGenerate(CLI::App& app) {
   auto a = std::make_shared<GenerateArgs>();
   a->scene.addTo(*cmd);
   cmd->add_option("--trajectory", a->trajectory,
-                  "TUM trajectory file 'timestamp tx ty tz qx qy qz qw' (T_world_camera, OpenCV "
-                  "camera axes); default: the built-in orbit of the built-in room");
+                  "two-body, hand-held or look-forward: a random trajectory through the layout's "
+                  "free space (--seed, --v-mult, ...); or a trajectory file (tum, euroc, icl, "
+                  "slambench, scenenet; T_world_camera, OpenCV camera axes). Default: the built-in "
+                  "orbit for the built-in room, two-body for --layout");
+  a->motion.addTo(*cmd);
   cmd->add_option("--frames", a->frames,
                   "number of frames (default 25; with --trajectory: the first N poses)")
       ->each([a](const std::string&) { a->frames_set = true; });
-  cmd->add_option("--fps", a->fps, "frame rate of the built-in trajectory (default 25)");
+  cmd->add_option("--fps", a->fps, "frame rate of built-in and random trajectories (default 25)");
   cmd->add_option("--spp", a->spp, "path-traced samples per pixel (default 16)");
   cmd->add_option("--max-bounces", a->max_bounces,
                   "maximum scattering events per path (default 8)");

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "core/error.h"
 #include "render/sensor_noise.h"
 #include "render/tonemap.h"
+#include "procedural/apartment.h"
 #include "scene/assimp_importer.h"
 #include "scene/default_scene.h"
 #include "scene/layout_json.h"
@@ -157,6 +159,63 @@ ThreadLimit::~ThreadLimit() = default;
 
 const char* version() {
   return INET_VERSION;
+}
+
+}  // namespace inet::app
+
+namespace inet::app {
+
+void MotionArgs::addTo(CLI::App& cmd) {
+  cmd.add_option("--v-mult", v_mult,
+                 "speed multiplier of a random trajectory (base 0.3 m/s RMS; default: drawn from "
+                 "U(0.5, 5) per trajectory, as the paper)");
+  cmd.add_option("--w-mult", w_mult,
+                 "turn-rate multiplier of a random trajectory (base 20 deg/s; default: drawn from "
+                 "U(0.5, 3) per trajectory)");
+  cmd.add_option("--clearance", clearance,
+                 "least distance from the camera to any geometry, m (default 0.25)");
+  cmd.add_option("--min-height", min_height, "lowest camera height, m (default 1)");
+  cmd.add_option("--max-height", max_height, "highest camera height, m (default 2)");
+}
+
+RandomTrajectoryOptions MotionArgs::options(MotionType type, uint64_t seed, int frames,
+                                            double fps) const {
+  if (v_mult != 0 && !(v_mult > 0 && v_mult <= 100))
+    throw InputError("", "--v-mult", "must be in (0, 100]");
+  if (w_mult != 0 && !(w_mult > 0 && w_mult <= 100))
+    throw InputError("", "--w-mult", "must be in (0, 100]");
+  if (!(clearance >= 0 && clearance <= 5)) throw InputError("", "--clearance", "must be in 0..5");
+  if (!(min_height >= 0 && min_height < max_height && max_height <= 100))
+    throw InputError("", "--max-height", "need 0 <= --min-height < --max-height <= 100");
+  RandomTrajectoryOptions o;
+  o.type = type;
+  o.seed = seed;
+  o.frames = frames;
+  o.fps = fps;
+  o.v_mult = v_mult;
+  o.w_mult = w_mult;
+  o.clearance = clearance;
+  o.min_height = min_height;
+  o.max_height = max_height;
+  return o;
+}
+
+Scene defaultApartment() {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() /
+                       fmt::format("interiornet-apartment-{}", static_cast<long>(::getpid()));
+  ApartmentOptions opt;
+  opt.seed = 0;
+  opt.texture_size = 64;
+  Scene scene;
+  try {
+    scene = makeApartment(opt, dir, dir / "textures").scene;
+  } catch (...) {
+    fs::remove_all(dir);
+    throw;
+  }
+  fs::remove_all(dir);
+  return scene;
 }
 
 }  // namespace inet::app

@@ -8,6 +8,7 @@
 #include "core/image.h"
 #include "render/lens.h"
 #include "scene/scene.h"
+#include "trajectory/random_trajectory.h"
 
 namespace inet::app {
 
@@ -65,6 +66,22 @@ struct LensArgs {
   CLI::Option* fov_opt_ = nullptr;
 };
 
+/// Options of the random trajectories (trajectory/random_trajectory.h) that `generate` and
+/// `trajectory generate` share: --v-mult, --w-mult, --clearance, --min-height, --max-height.
+struct MotionArgs {
+  double v_mult = 0.0;  ///< 0 = drawn per trajectory
+  double w_mult = 0.0;
+  double clearance = 0.25;
+  double min_height = 1.0, max_height = 2.0;
+  void addTo(CLI::App& cmd);
+  /// Options for a trajectory of `type` with these settings (InputError naming the flag).
+  RandomTrajectoryOptions options(MotionType type, uint64_t seed, int frames, double fps) const;
+};
+
+/// The built-in procedural apartment (seed 0) that commands use when no layout is given and a
+/// furnished apartment is needed (its textures are made in a temporary folder and removed).
+Scene defaultApartment();
+
 /// Limits TBB to n threads for the life of the object (n = 0: all cores).
 class ThreadLimit {
  public:
@@ -85,5 +102,8 @@ void registerGenerate(CLI::App& app);
 void registerRender(CLI::App& app);
 void registerLayout(CLI::App& app);
 void registerBench(CLI::App& app);
+void registerTrajectory(CLI::App& app);
+void registerEval(CLI::App& app);
+void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 
 }  // namespace inet::app

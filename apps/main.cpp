@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   inet::app::registerRender(app);
   inet::app::registerLayout(app);
   inet::app::registerBench(app);
+  inet::app::registerTrajectory(app);
+  inet::app::registerEval(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@ PACKAGES=(
   libembree-dev libtbb-dev libeigen3-dev libassimp-dev libopenexr-dev libpng-dev libjpeg-dev
   nlohmann-json3-dev libpugixml-dev libcli11-dev libfmt-dev libspdlog-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libcairo2-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -1,0 +1,487 @@
+#include "trajectory/formats.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace inet {
+namespace {
+
+constexpr double kQuatNormTolerance = 1e-3;
+constexpr const char* kTumComment =
+    "interiornet trajectory: T_world_camera, OpenCV camera axes, world Z up";
+
+// ---- conversions (derivations in formats.h) ----
+
+/// ICL world -> ours (swap y and z); its own inverse.
+Mat3 iclWorldToOurs() {
+  Mat3 a;
+  a << 1, 0, 0, 0, 0, 1, 0, 1, 0;
+  return a;
+}
+
+/// ICL camera (y up) <-> OpenCV camera (y down); its own inverse.
+Mat3 yFlip() {
+  return Vec3(1, -1, 1).asDiagonal();
+}
+
+Pose iclToOurs(const Pose& T_icl) {
+  const Mat3 a = iclWorldToOurs();
+  return {Quat(a * T_icl.rotation() * yFlip()).normalized(), a * T_icl.t};
+}
+
+/// SceneNet world (y up) -> ours (z up): Rx(+90 deg).
+Vec3 sceneNetToOurs(const Vec3& p) {
+  return {p.x(), -p.z(), p.y()};
+}
+Vec3 oursToSceneNet(const Vec3& p) {
+  return {p.x(), p.z(), -p.y()};
+}
+
+// ---- tokenising ----
+
+/// Calls fn(line, line_no) for every line that is not blank and not a '#' comment, with a
+/// trailing '\r' removed.
+void forEachDataLine(const std::string& text,
+                     const std::function<void(const std::string&, int)>& fn) {
+  size_t pos = 0;
+  int line_no = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    fn(line, line_no);
+  }
+}
+
+std::vector<std::string> splitWhitespace(const std::string& line) {
+  std::vector<std::string> out;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+/// Comma-separated fields with surrounding spaces removed (EuRoC writes ", " in its header).
+std::vector<std::string> splitComma(const std::string& line) {
+  std::vector<std::string> out;
+  size_t i = 0;
+  while (true) {
+    size_t j = line.find(',', i);
+    std::string f = line.substr(i, j == std::string::npos ? std::string::npos : j - i);
+    const size_t a = f.find_first_not_of(" \t"), b = f.find_last_not_of(" \t");
+    out.push_back(a == std::string::npos ? std::string() : f.substr(a, b - a + 1));
+    if (j == std::string::npos) break;
+    i = j + 1;
+  }
+  return out;
+}
+
+/// A finite decimal number (optional sign, fraction, exponent). No hex, inf or nan.
+bool parseNumber(const std::string& s, double& out) {
+  const char* b = s.data();
+  const char* e = b + s.size();
+  if (b != e && *b == '+') ++b;
+  auto [ptr, ec] = std::from_chars(b, e, out, std::chars_format::general);
+  return ec == std::errc() && ptr == e && std::isfinite(out);
+}
+
+bool isDigits(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (c < '0' || c > '9') return false;
+  return true;
+}
+
+/// A non-negative integer that fits int64.
+bool parseCount(const std::string& s, int64_t& out) {
+  if (!isDigits(s)) return false;
+  auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && ptr == s.data() + s.size();
+}
+
+std::string lineRef(int line_no) {
+  return fmt::format("line {}", line_no);
+}
+
+/// Parses tokens[first .. first+n) as numbers; InputError names the 1-based column.
+void parseNumbers(const std::vector<std::string>& tok, size_t first, size_t n, double* out,
+                  const std::string& path, int line_no) {
+  for (size_t k = 0; k < n; ++k)
+    if (!parseNumber(tok[first + k], out[k]))
+      throw InputError(
+          path, lineRef(line_no),
+          fmt::format("column {} '{}' is not a finite number", first + k + 1, tok[first + k]));
+}
+
+/// A unit quaternion from (w, x, y, z), or InputError.
+Quat unitQuat(double w, double x, double y, double z, const std::string& path, int line_no) {
+  Quat q(w, x, y, z);
+  if (std::abs(q.norm() - 1.0) > kQuatNormTolerance)
+    throw InputError(path, lineRef(line_no),
+                     fmt::format("quaternion norm {:.6f} is not 1", q.norm()));
+  return q.normalized();
+}
+
+/// Appends a pose, enforcing strictly increasing time.
+void appendPose(Trajectory& traj, TimeNs t_ns, const Pose& T_world_camera, const std::string& path,
+                int line_no) {
+  if (!traj.empty() && t_ns <= traj.poses.back().t_ns)
+    throw InputError(
+        path, lineRef(line_no),
+        fmt::format("time must increase strictly ({} s after {} s)", nsToSecondsString(t_ns),
+                    nsToSecondsString(traj.poses.back().t_ns)));
+  traj.poses.push_back({t_ns, T_world_camera});
+}
+
+Trajectory nonEmpty(Trajectory traj, const std::string& path) {
+  if (traj.empty()) throw InputError(path, "", "trajectory has no poses");
+  return traj;
+}
+
+// ---- readers ----
+
+Trajectory parseEuroc(const std::string& text, const std::string& path) {
+  Trajectory traj;
+  size_t columns = 0;
+  forEachDataLine(text, [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitComma(line);
+    if (tok.size() != 8 && tok.size() != 17)
+      throw InputError(path, lineRef(line_no),
+                       fmt::format("expected 8 or 17 comma-separated columns "
+                                   "'t_ns,px,py,pz,qw,qx,qy,qz[,v,bw,ba]', found {}",
+                                   tok.size()));
+    if (columns == 0) columns = tok.size();
+    if (tok.size() != columns)
+      throw InputError(path, lineRef(line_no),
+                       fmt::format("{} columns after rows of {}", tok.size(), columns));
+    int64_t t_ns = 0;
+    if (!parseCount(tok[0], t_ns))
+      throw InputError(path, lineRef(line_no),
+                       "timestamp '" + tok[0] + "' is not an integer number of nanoseconds");
+    double v[16];
+    parseNumbers(tok, 1, tok.size() - 1, v, path, line_no);
+    const Pose p{unitQuat(v[3], v[4], v[5], v[6], path, line_no), Vec3(v[0], v[1], v[2])};
+    appendPose(traj, t_ns, p, path, line_no);
+  });
+  return nonEmpty(std::move(traj), path);
+}
+
+/// Frame number -> ns at `fps` (rounded to the nearest ns).
+TimeNs frameToNs(int64_t frame, double fps) {
+  return static_cast<TimeNs>(std::llround(static_cast<double>(frame) * 1e9 / fps));
+}
+
+Trajectory parseIcl(const std::string& text, const std::string& path, double fps) {
+  Trajectory traj;
+  forEachDataLine(text, [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok.size() != 8)
+      throw InputError(
+          path, lineRef(line_no),
+          fmt::format("expected 8 fields 'frame tx ty tz qx qy qz qw', found {}", tok.size()));
+    int64_t frame = 0;
+    if (!parseCount(tok[0], frame) || static_cast<double>(frame) / fps > 9e9)
+      throw InputError(path, lineRef(line_no),
+                       "frame number '" + tok[0] + "' is not a non-negative integer");
+    double v[7];
+    parseNumbers(tok, 1, 7, v, path, line_no);
+    const Pose T_icl{unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])};
+    appendPose(traj, frameToNs(frame, fps), iclToOurs(T_icl), path, line_no);
+  });
+  return nonEmpty(std::move(traj), path);
+}
+
+/// The TUM layout, checked against SLAMBench 2's RegexPattern (timestamp `([0-9]+)[.]([0-9]+)`,
+/// decimal `([-0-9.]+)`).
+Trajectory parseSlamBench(const std::string& text, const std::string& path) {
+  Trajectory traj;
+  forEachDataLine(text, [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok.size() != 8)
+      throw InputError(
+          path, lineRef(line_no),
+          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
+    const size_t dot = tok[0].find('.');
+    TimeNs t_ns = 0;
+    if (dot == std::string::npos || !isDigits(tok[0].substr(0, dot)) ||
+        !isDigits(tok[0].substr(dot + 1)) || tok[0].size() - dot - 1 > 9 ||
+        !parseSecondsToNs(tok[0], t_ns))
+      throw InputError(path, lineRef(line_no),
+                       "timestamp '" + tok[0] +
+                           "' is not 'seconds.fraction' (at most 9 decimals), as SLAMBench needs");
+    for (size_t k = 1; k < 8; ++k)
+      if (tok[k].find_first_not_of("-0123456789.") != std::string::npos)
+        throw InputError(path, lineRef(line_no),
+                         fmt::format("column {} '{}' is not plain decimal notation, which "
+                                     "SLAMBench's [-0-9.]+ requires",
+                                     k + 1, tok[k]));
+    double v[7];
+    parseNumbers(tok, 1, 7, v, path, line_no);
+    const Pose p{unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])};
+    appendPose(traj, t_ns, p, path, line_no);
+  });
+  return nonEmpty(std::move(traj), path);
+}
+
+/// "key:x,y,z" -> the point, or InputError.
+Vec3 sceneNetPoint(const std::string& tok, const std::string& key, const std::string& path,
+                   int line_no) {
+  if (tok.rfind(key, 0) != 0)
+    throw InputError(path, lineRef(line_no), "expected '" + key + "x,y,z', found '" + tok + "'");
+  const std::vector<std::string> xyz = splitComma(tok.substr(key.size()));
+  if (xyz.size() != 3)
+    throw InputError(path, lineRef(line_no),
+                     fmt::format("'{}' needs 3 comma-separated values, found {}", key, xyz.size()));
+  double v[3];
+  parseNumbers(xyz, 0, 3, v, path, line_no);
+  return {v[0], v[1], v[2]};
+}
+
+Trajectory parseSceneNet(const std::string& text, const std::string& path) {
+  Trajectory traj;
+  forEachDataLine(text, [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok[0].rfind("instance:", 0) == 0) return;  // render_info.log object list
+    if (tok.size() != 3)
+      throw InputError(
+          path, lineRef(line_no),
+          fmt::format("expected 'time:T pose:x,y,z lookat:x,y,z', found {} fields", tok.size()));
+    TimeNs t_ns = 0;
+    if (tok[0].rfind("time:", 0) != 0 || !parseSecondsToNs(tok[0].substr(5), t_ns))
+      throw InputError(path, lineRef(line_no), "expected 'time:<seconds>', found '" + tok[0] + "'");
+    const Vec3 eye = sceneNetToOurs(sceneNetPoint(tok[1], "pose:", path, line_no));
+    const Vec3 target = sceneNetToOurs(sceneNetPoint(tok[2], "lookat:", path, line_no));
+    const Vec3 dir = target - eye;
+    if (dir.norm() < 1e-9 || dir.normalized().cross(Vec3::UnitZ()).norm() < 1e-6)
+      throw InputError(path, lineRef(line_no),
+                       "lookat equals the camera position or lies straight above/below it: "
+                       "the view direction is undefined");
+    appendPose(traj, t_ns, Pose::lookAt(eye, target, Vec3::UnitZ()), path, line_no);
+  });
+  return nonEmpty(std::move(traj), path);
+}
+
+// ---- writers ----
+
+void requireNonNegativeTime(const Trajectory& traj, TrajectoryFormat fmt) {
+  for (size_t k = 0; k < traj.size(); ++k)
+    if (traj.poses[k].t_ns < 0)
+      throw InputError(
+          "", fmt::format("pose {}", k),
+          fmt::format("time {} s is negative; {} needs times >= 0",
+                      nsToSecondsString(traj.poses[k].t_ns), trajectoryFormatName(fmt)));
+}
+
+/// `tx ty tz qx qy qz qw` (TUM order), nm positions and 12-decimal quaternions.
+std::string tumPoseFields(const Pose& T) {
+  const Quat q = canonicalQuat(T.q);
+  return fmt::format("{:.9f} {:.9f} {:.9f} {:.12f} {:.12f} {:.12f} {:.12f}", T.t.x(), T.t.y(),
+                     T.t.z(), q.x(), q.y(), q.z(), q.w());
+}
+
+std::string formatEuroc(const Trajectory& traj) {
+  std::string out =
+      "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+      "q_RS_z [], v_RS_R_x [m s^-1], v_RS_R_y [m s^-1], v_RS_R_z [m s^-1], b_w_RS_S_x [rad s^-1], "
+      "b_w_RS_S_y [rad s^-1], b_w_RS_S_z [rad s^-1], b_a_RS_S_x [m s^-2], b_a_RS_S_y [m s^-2], "
+      "b_a_RS_S_z [m s^-2]\n";
+  for (size_t k = 0; k < traj.size(); ++k) {
+    const Pose& T = traj.poses[k].T_world_camera;
+    const Quat q = canonicalQuat(T.q);
+    const Vec3 v = traj.velocityWorld(k);
+    // shortest decimals that read back to the same double: lossless, so TUM -> EuRoC -> TUM
+    // gives the same file
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},0,0,0,0,0,0\n", traj.poses[k].t_ns,
+                       T.t.x(), T.t.y(), T.t.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z());
+  }
+  return out;
+}
+
+std::string formatIcl(const Trajectory& traj, double fps) {
+  std::string out;
+  const double period_ns = 1e9 / fps;
+  for (size_t k = 0; k < traj.size(); ++k) {
+    const TimeNs t_ns = traj.poses[k].t_ns;
+    const int64_t frame = std::llround(static_cast<double>(t_ns) / period_ns);
+    if (std::abs(static_cast<double>(frameToNs(frame, fps) - t_ns)) > 0.01 * period_ns)
+      throw InputError("", "--fps",
+                       fmt::format("pose {} at {} s is not on the {} fps frame grid (nearest "
+                                   "frame {}); resample the trajectory or give its frame rate",
+                                   k, nsToSecondsString(t_ns), fps, frame));
+    // iclToOurs is its own inverse (A and F are involutions)
+    out += fmt::format("{} {}\n", frame, tumPoseFields(iclToOurs(traj.poses[k].T_world_camera)));
+  }
+  return out;
+}
+
+std::string formatSlamBench(const Trajectory& traj) {
+  std::string out = std::string("# ") + kTumComment + "\n# timestamp tx ty tz qx qy qz qw\n";
+  for (const TimedPose& p : traj.poses)
+    out += fmt::format("{} {}\n", nsToSecondsString(p.t_ns), tumPoseFields(p.T_world_camera));
+  return out;
+}
+
+std::string formatSceneNet(const Trajectory& traj) {
+  std::string out;
+  for (size_t k = 0; k < traj.size(); ++k) {
+    const Pose& T = traj.poses[k].T_world_camera;
+    const Vec3 forward = T.rotation().col(2);
+    if (forward.cross(Vec3::UnitZ()).norm() < 1e-6)
+      throw InputError("", fmt::format("pose {}", k),
+                       "the camera looks straight up or down, which SceneNet's lookat form "
+                       "(up = world up) cannot express");
+    const Vec3 eye = oursToSceneNet(T.t), look = oursToSceneNet(T.t + forward);
+    out += fmt::format("time:{} pose:{:.12f},{:.12f},{:.12f} lookat:{:.12f},{:.12f},{:.12f}\n",
+                       nsToSecondsString(traj.poses[k].t_ns), eye.x(), eye.y(), eye.z(), look.x(),
+                       look.y(), look.z());
+  }
+  return out;
+}
+
+struct FormatName {
+  TrajectoryFormat fmt;
+  const char* name;
+};
+constexpr FormatName kFormats[] = {{TrajectoryFormat::Tum, "tum"},
+                                   {TrajectoryFormat::Euroc, "euroc"},
+                                   {TrajectoryFormat::Icl, "icl"},
+                                   {TrajectoryFormat::SlamBench, "slambench"},
+                                   {TrajectoryFormat::SceneNet, "scenenet"}};
+
+}  // namespace
+
+TrajectoryFormat parseTrajectoryFormat(const std::string& name, const std::string& field) {
+  for (const FormatName& f : kFormats)
+    if (name == f.name) return f.fmt;
+  std::string valid;
+  for (const FormatName& f : kFormats) valid += std::string(valid.empty() ? "" : ", ") + f.name;
+  throw InputError("", field, "unknown trajectory format '" + name + "' (valid: " + valid + ")");
+}
+
+const char* trajectoryFormatName(TrajectoryFormat f) {
+  for (const FormatName& n : kFormats)
+    if (n.fmt == f) return n.name;
+  INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
+}
+
+std::optional<TrajectoryFormat> trajectoryFormatFromExtension(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".csv") return TrajectoryFormat::Euroc;
+  if (ext == ".freiburg") return TrajectoryFormat::Icl;
+  if (ext == ".log") return TrajectoryFormat::SceneNet;
+  if (ext == ".txt") return TrajectoryFormat::Tum;
+  return std::nullopt;
+}
+
+TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::string& text) {
+  std::string first;
+  int first_no = 0;
+  forEachDataLine(text, [&](const std::string& line, int line_no) {
+    if (!first.empty()) return;
+    first = line;
+    first_no = line_no;
+  });
+  if (first.empty()) throw InputError(path, "", "trajectory has no poses");
+  // when the content does not tell, the extension decides, so that the format's own parser
+  // reports what is wrong with the line
+  const std::optional<TrajectoryFormat> by_extension = trajectoryFormatFromExtension(path);
+  const auto cannot = [&](const std::string& why) {
+    if (by_extension) return *by_extension;
+    throw InputError(path, lineRef(first_no),
+                     "cannot tell the trajectory format (" + why +
+                         "); name it (tum, euroc, icl, slambench, scenenet)");
+  };
+  const std::vector<std::string> tok = splitWhitespace(first);
+  if (tok[0].rfind("time:", 0) == 0 || tok[0].rfind("instance:", 0) == 0)
+    return TrajectoryFormat::SceneNet;
+  if (first.find(',') != std::string::npos) {
+    const std::vector<std::string> cols = splitComma(first);
+    if ((cols.size() == 8 || cols.size() == 17) && isDigits(cols[0]))
+      return TrajectoryFormat::Euroc;
+    if (cols.size() == 8) return TrajectoryFormat::Tum;  // TUM tools also write commas
+    return cannot(fmt::format("{} comma-separated columns", cols.size()));
+  }
+  if (tok.size() != 8) return cannot(fmt::format("{} columns", tok.size()));
+  // ICL-NUIM's frame numbers look like whole-second TUM stamps: only its extension tells
+  if (by_extension == TrajectoryFormat::Icl) return TrajectoryFormat::Icl;
+  return TrajectoryFormat::Tum;
+}
+
+Trajectory parseTrajectory(const std::string& text, const std::string& path, TrajectoryFormat fmt,
+                           const TrajectoryFormatOptions& opt) {
+  switch (fmt) {
+    case TrajectoryFormat::Tum:
+      return parseTumTrajectory(text, path);
+    case TrajectoryFormat::Euroc:
+      return parseEuroc(text, path);
+    case TrajectoryFormat::Icl:
+      if (!(opt.icl_fps > 0) || !std::isfinite(opt.icl_fps))
+        throw InputError(path, "--fps", "the ICL frame rate must be > 0");
+      return parseIcl(text, path, opt.icl_fps);
+    case TrajectoryFormat::SlamBench:
+      return parseSlamBench(text, path);
+    case TrajectoryFormat::SceneNet:
+      return parseSceneNet(text, path);
+  }
+  INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
+}
+
+Trajectory readTrajectory(const std::string& path, std::optional<TrajectoryFormat> fmt,
+                          const TrajectoryFormatOptions& opt) {
+  const std::string text = readTextFile(path);
+  return parseTrajectory(text, path, fmt ? *fmt : detectTrajectoryFormat(path, text), opt);
+}
+
+std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,
+                             const TrajectoryFormatOptions& opt) {
+  if (traj.empty()) throw InputError("", "trajectory", "no poses to write");
+  switch (fmt) {
+    case TrajectoryFormat::Tum:
+      return formatTumTrajectory(traj, kTumComment);
+    case TrajectoryFormat::Euroc:
+      requireNonNegativeTime(traj, fmt);
+      return formatEuroc(traj);
+    case TrajectoryFormat::Icl:
+      if (!(opt.icl_fps > 0) || !std::isfinite(opt.icl_fps))
+        throw InputError("", "--fps", "the ICL frame rate must be > 0");
+      requireNonNegativeTime(traj, fmt);
+      return formatIcl(traj, opt.icl_fps);
+    case TrajectoryFormat::SlamBench:
+      requireNonNegativeTime(traj, fmt);
+      return formatSlamBench(traj);
+    case TrajectoryFormat::SceneNet:
+      return formatSceneNet(traj);
+  }
+  INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
+}
+
+void writeTrajectory(const std::string& path, const Trajectory& traj, TrajectoryFormat fmt,
+                     const TrajectoryFormatOptions& opt) {
+  writeTextAtomic(path, formatTrajectory(traj, fmt, opt));
+}
+
+Trajectory offsetTrajectory(const Trajectory& traj, const Pose& T_cam0_cam1) {
+  Trajectory out = traj;
+  for (TimedPose& p : out.poses) p.T_world_camera = p.T_world_camera * T_cam0_cam1;
+  return out;
+}
+
+}  // namespace inet

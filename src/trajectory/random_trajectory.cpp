@@ -1,0 +1,260 @@
+#include "trajectory/random_trajectory.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/rng.h"
+
+namespace inet {
+
+namespace {
+
+constexpr double kSimDt = 1e-3;     // simulation step (s)
+constexpr double kDrag = 1.0;       // k: velocity decays as exp(-k t) without forces (1/s)
+constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
+constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
+constexpr double kWallBand = 0.4;   // distance beyond the clearance where walls start to push
+constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
+
+/// Standard normal from two uniforms (Box-Muller; one value per call keeps draws simple).
+double gaussian(CounterRng& rng) {
+  double u1 = std::max(rng.uniformDouble(), 1e-300), u2 = rng.uniformDouble();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+
+/// A 3-D Ornstein-Uhlenbeck process with correlation time tau and stationary standard
+/// deviation sigma per axis, stepped exactly (not Euler), so its statistics do not depend on dt.
+struct OuProcess {
+  Vec3 value = Vec3::Zero();
+  Vec3 sigma = Vec3::Zero();
+  double tau = 1.0;
+  void start(CounterRng& rng) {
+    for (int c = 0; c < 3; ++c) value[c] = sigma[c] * gaussian(rng);
+  }
+  void step(CounterRng& rng, double dt) {
+    const double a = std::exp(-dt / tau), b = std::sqrt(1.0 - a * a);
+    for (int c = 0; c < 3; ++c) value[c] = a * value[c] + b * sigma[c] * gaussian(rng);
+  }
+};
+
+/// RMS speed per axis of a body with drag k driven by an OU force (sigma = 1, tau).
+double ouSpeedFactor(double tau, double k = kDrag) { return std::sqrt(tau / (k * (1.0 + k * tau))); }
+
+struct State {
+  Vec3 cam, target, up;
+};
+
+State lerp(const State& a, const State& b, double f) {
+  return {a.cam + f * (b.cam - a.cam), a.target + f * (b.target - a.target),
+          (a.up + f * (b.up - a.up)).normalized()};
+}
+
+}  // namespace
+
+MotionType parseMotionType(const std::string& name, const std::string& field) {
+  if (name == "two-body") return MotionType::TwoBody;
+  if (name == "hand-held") return MotionType::HandHeld;
+  if (name == "look-forward") return MotionType::LookForward;
+  throw InputError("", field,
+                   fmt::format("unknown trajectory type '{}' (two-body, hand-held, look-forward)",
+                               name));
+}
+
+const char* motionTypeName(MotionType t) {
+  switch (t) {
+    case MotionType::TwoBody: return "two-body";
+    case MotionType::HandHeld: return "hand-held";
+    case MotionType::LookForward: return "look-forward";
+  }
+  return "?";
+}
+
+RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
+                                          const RandomTrajectoryOptions& opt,
+                                          const std::string& source) {
+  INET_CHECK(opt.frames >= 1 && opt.fps > 0 && opt.exposure_s >= 0 && opt.dense_rate > 0);
+  INET_CHECK(opt.min_height < opt.max_height && opt.clearance >= 0);
+  CounterRng rng(opt.seed, RngStream::Trajectory, static_cast<uint32_t>(opt.type), 0, 0);
+  RandomTrajectory out;
+  out.v_mult = opt.v_mult > 0 ? opt.v_mult : rng.uniformDouble(0.5, 5.0);
+  out.w_mult = opt.w_mult > 0 ? opt.w_mult : rng.uniformDouble(0.5, 3.0);
+  const double clear = opt.clearance + kMargin;
+  const bool forward = opt.type == MotionType::LookForward;
+
+  // ---- start: a random free voxel at a comfortable height ----
+  const double h_lo = opt.min_height, h_hi = opt.max_height;
+  std::vector<Vec3> starts = space.freeCentres(clear + 0.2, h_lo + 0.2, h_hi - 0.2);
+  if (starts.empty()) starts = space.freeCentres(clear, h_lo, h_hi);
+  if (starts.empty())
+    throw InputError(source, "free space",
+                     fmt::format("no place {:.2f} m from all geometry at {:.1f}-{:.1f} m height "
+                                 "for a camera",
+                                 opt.clearance, h_lo, h_hi));
+  State s;
+  s.cam = starts[std::min(starts.size() - 1,
+                          static_cast<size_t>(rng.uniformDouble() * starts.size()))];
+  s.up = Vec3::UnitZ();
+  const double look_dist = 1.5;
+  s.target = s.cam + Vec3(look_dist, 0, -0.3);
+  for (int attempt = 0; attempt < 32; ++attempt) {
+    double a = 2 * M_PI * rng.uniformDouble();
+    Vec3 t = s.cam + Vec3(look_dist * std::cos(a), look_dist * std::sin(a), -0.3);
+    if (space.lowerBound(t) > 0.05) {
+      s.target = t;
+      break;
+    }
+  }
+
+  // ---- forces ----
+  // look-forward: the heading is the velocity's direction, which forgets itself at the drag rate
+  // and the force's correlation time; both scale with w_mult so the view turns with it
+  const double cam_tau = forward ? 2.0 / out.w_mult : 1.0;
+  const double cam_drag = forward ? 0.5 * kDrag * out.w_mult : kDrag;
+  const double cam_sigma =
+      opt.base_speed * out.v_mult / std::sqrt(2.0) / ouSpeedFactor(cam_tau, cam_drag);
+  OuProcess cam_force;
+  cam_force.tau = cam_tau;
+  cam_force.sigma = Vec3(cam_sigma, cam_sigma, 0.25 * cam_sigma);
+  const double turn = opt.base_turn_deg * M_PI / 180.0 * out.w_mult;
+  const double target_sigma = turn * look_dist / std::sqrt(2.0) / ouSpeedFactor(1.0);
+  OuProcess target_force;
+  target_force.tau = 1.0;
+  target_force.sigma = Vec3(target_sigma, target_sigma, 0.5 * target_sigma);
+  OuProcess tilt;  // x, y: lean of the up vector (radians); z unused
+  tilt.tau = 2.0;
+  tilt.sigma = Vec3::Constant(opt.max_tilt_deg * M_PI / 180.0 / 2.5);
+  tilt.sigma.z() = 0;
+  cam_force.start(rng);
+  target_force.start(rng);
+  tilt.start(rng);
+  const double max_tilt = opt.max_tilt_deg * M_PI / 180.0;
+  const double kp = std::pow(4.0 * out.w_mult, 2), kd = 2.0 * std::sqrt(kp);  // look-forward yaw
+
+  Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero();
+  double yaw = std::atan2(s.target.y() - s.cam.y(), s.target.x() - s.cam.x()), yaw_rate = 0.0;
+  Vec3 heading(std::cos(yaw), std::sin(yaw), 0);
+  double pitch = -0.15;
+  // one step of the coupled system; keeps the camera free and within the height limits
+  auto step = [&]() {
+    cam_force.step(rng, kSimDt);
+    target_force.step(rng, kSimDt);
+    tilt.step(rng, kSimDt);
+
+    // camera
+    Vec3 f = cam_force.value;
+    Vec3 vh(v_cam.x(), v_cam.y(), 0);
+    if (vh.norm() > 0.05) heading = vh.normalized();
+    if (forward && f.dot(heading) < 0) f -= 2.0 * f.dot(heading) * heading;
+    Vec3 a = f - cam_drag * v_cam;
+    const double d = space.lowerBound(s.cam);
+    if (d < clear + kWallBand) {
+      Vec3 g = space.gradient(s.cam);
+      if (g.norm() > 1e-9) a += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
+    }
+    const double mid = 0.5 * (h_lo + h_hi);
+    a.z() += -1.0 * (s.cam.z() - mid);  // weak pull to mid-height, so heights vary but stay
+    v_cam += a * kSimDt;
+    Vec3 next = s.cam + v_cam * kSimDt;
+    if (next.z() < h_lo || next.z() > h_hi) {
+      v_cam.z() = -0.5 * v_cam.z();
+      next.z() = std::clamp(next.z(), h_lo, h_hi);
+    }
+    if (!space.hasClearance(next, clear)) {
+      Vec3 n = space.gradient(s.cam);
+      if (n.norm() > 1e-9) {
+        n.normalize();
+        if (v_cam.dot(n) < 0) v_cam -= 1.5 * v_cam.dot(n) * n;  // restitution 0.5
+      } else {
+        v_cam = -v_cam;
+      }
+      next = s.cam + v_cam * kSimDt;
+      next.z() = std::clamp(next.z(), h_lo, h_hi);
+      if (!space.hasClearance(next, clear)) {  // still blocked: stay and lose the speed
+        next = s.cam;
+        v_cam *= 0.5;
+      }
+    }
+    s.cam = next;
+
+    // look-at body
+    if (forward) {
+      // the view's yaw follows the heading through a critically damped angular spring, so a
+      // bounce turns the view around smoothly instead of pulling the look-at point through
+      // the camera; a little random force keeps it from being rigid
+      const double want = std::atan2(heading.y(), heading.x());
+      const double err = std::remainder(want - yaw, 2.0 * M_PI);
+      yaw_rate += (kp * err - kd * yaw_rate + 0.5 * target_force.value.x()) * kSimDt;
+      yaw += yaw_rate * kSimDt;
+      pitch += (-2.0 * (pitch + 0.15) + 0.3 * target_force.value.z()) * kSimDt;
+      pitch = std::clamp(pitch, -0.6, 0.3);
+      s.target = s.cam + look_dist * Vec3(std::cos(yaw) * std::cos(pitch),
+                                          std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+    } else {
+      Vec3 at = target_force.value - kDrag * v_target;
+      Vec3 rel = s.target - s.cam;
+      Vec3 rel_h(rel.x(), rel.y(), 0);
+      const double dist_h = rel_h.norm();
+      // keep the look-at point 0.8-2.5 m away horizontally, so the view never points straight
+      // up or down, and 0.3-2.5 m above the floor
+      if (dist_h < 0.8 && dist_h > 1e-9) at += 6.0 * (0.8 - dist_h) * rel_h / dist_h;
+      if (dist_h > 2.5) at -= 6.0 * (dist_h - 2.5) * rel_h / dist_h;
+      const double z_hi = opt.type == MotionType::HandHeld ? s.cam.z() - 0.2 : 2.5;
+      if (s.target.z() > z_hi) at.z() -= 6.0 * (s.target.z() - z_hi);
+      if (s.target.z() < 0.3) at.z() += 6.0 * (0.3 - s.target.z());
+      v_target += at * kSimDt;
+      // the look-at body is carried along with the camera in part (kCarry), so the view's turn
+      // rate comes mostly from its own motion (w_mult) rather than from the camera's (v_mult)
+      // (the look-at point may pass into geometry: it only aims the camera, and stopping it at
+      // walls would turn the view with the camera's speed)
+      s.target += (v_target + kCarry * v_cam) * kSimDt;
+      if (opt.type == MotionType::HandHeld && s.target.z() > s.cam.z() - 0.05) {
+        s.target.z() = s.cam.z() - 0.05;  // hard limit: the look-at point stays below the camera
+        v_target.z() = std::min(0.0, v_target.z());
+      }
+    }
+    Vec3 lean(tilt.value.x(), tilt.value.y(), 0);
+    if (lean.norm() > max_tilt) lean *= max_tilt / lean.norm();
+    s.up = Vec3(std::tan(lean.x()), std::tan(lean.y()), 1.0).normalized();
+  };
+
+  for (int i = 0; i < static_cast<int>(kWarmup / kSimDt); ++i) step();
+
+  // ---- record: sim states at every step over the span the samples need ----
+  const TimeNs last_ns = static_cast<TimeNs>(std::llround((opt.frames - 1) * 1e9 / opt.fps)) +
+                         static_cast<TimeNs>(std::llround(opt.exposure_s * 1e9));
+  const size_t steps = static_cast<size_t>(std::ceil(last_ns * 1e-9 / kSimDt)) + 2;
+  std::vector<State> states;
+  states.reserve(steps);
+  states.push_back(s);
+  while (states.size() < steps) {
+    step();
+    states.push_back(s);
+  }
+  auto stateAt = [&](TimeNs t_ns) {
+    double x = t_ns * 1e-9 / kSimDt;
+    size_t i = std::min(states.size() - 2, static_cast<size_t>(x));
+    return lerp(states[i], states[i + 1], x - static_cast<double>(i));
+  };
+  auto poseAt = [&](TimeNs t_ns) {
+    State st = stateAt(t_ns);
+    return TimedPose{t_ns, Pose::lookAt(st.cam, st.target, st.up)};
+  };
+  for (int k = 0; k < opt.frames; ++k) {
+    const TimeNs t = static_cast<TimeNs>(std::llround(k * 1e9 / opt.fps));
+    out.frames.poses.push_back(poseAt(t));
+    out.shutter_close.poses.push_back(
+        poseAt(t + static_cast<TimeNs>(std::llround(opt.exposure_s * 1e9))));
+    out.tilt_deg.push_back(std::acos(std::clamp(stateAt(t).up.z(), -1.0, 1.0)) * 180.0 / M_PI);
+  }
+  for (int64_t i = 0;; ++i) {
+    const TimeNs t = static_cast<TimeNs>(std::llround(i * 1e9 / opt.dense_rate));
+    if (t > last_ns) break;
+    out.dense.poses.push_back(poseAt(t));
+  }
+  return out;
+}
+
+}  // namespace inet

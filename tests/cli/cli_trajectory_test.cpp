@@ -1,0 +1,96 @@
+// End to end: a generated apartment gets a random trajectory and renders labelled frames with no
+// camera path given; `trajectory generate`, `convert`, `show` and `eval ate` work together on
+// the files they write.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_util.h"
+#include "core/atomic_file.h"
+#include "trajectory/formats.h"
+
+namespace inet::test {
+namespace {
+
+TEST(CliTrajectory, GenerateOnAGeneratedLayoutFindsItsOwnPath) {
+  TempDir dir("cli_traj_layout");
+  const std::string layout = (dir / "apt").string();
+  ASSERT_EQ(runInterinet("layout generate --seed 4 --texture-size 64 --out " + layout).exit_code, 0);
+  RunResult r = runInterinet("generate --layout " + layout +
+                             "/layout.json --trajectory hand-held --frames 3 --spp 1 --width 64 "
+                             "--height 48 --fx 60 --fy 60 --no-progress --seed 9 --out " +
+                             (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // one sequence folder with 3 labelled frames
+  auto tree = readTree(dir / "out");
+  int labels = 0;
+  std::string gt, meta;
+  for (const auto& [name, text] : tree) {
+    labels += name.find("_nyu.png") != std::string::npos;
+    if (name.find("groundtruth.txt") != std::string::npos) gt = text;
+    if (name.find("meta.json") != std::string::npos) meta = text;
+  }
+  EXPECT_EQ(labels, 3);
+  Trajectory t = parseTrajectory(gt, "groundtruth.txt", TrajectoryFormat::Tum);
+  ASSERT_EQ(t.size(), 3u);
+  for (const auto& p : t.poses) {
+    EXPECT_GE(p.T_world_camera.t.z(), 1.0);
+    EXPECT_LE(p.T_world_camera.t.z(), 2.0);
+    EXPECT_LT(p.T_world_camera.rotation().col(2).z(), 0.0) << "hand-held looks down";
+  }
+  EXPECT_NE(meta.find("hand-held random trajectory, seed 9"), std::string::npos) << meta;
+}
+
+TEST(CliTrajectory, GenerateConvertShowAndScore) {
+  TempDir dir("cli_traj_tools");
+  const std::string tum = (dir / "a.txt").string(), csv = (dir / "a.csv").string();
+  RunResult g = runInterinet("trajectory generate --type look-forward --frames 200 --seed 2 "
+                             "--v-mult 1.5 --w-mult 1 --out " + tum + " --plot " +
+                             (dir / "a.png").string());
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  EXPECT_NE(g.out.find("v_mult 1.50, w_mult 1.00"), std::string::npos) << g.out;
+  EXPECT_GT(std::filesystem::file_size(dir / "a.png"), 10000u);
+  // the same seed gives the same bytes
+  ASSERT_EQ(runInterinet("trajectory generate --type look-forward --frames 200 --seed 2 "
+                         "--v-mult 1.5 --w-mult 1 --out " + (dir / "b.txt").string())
+                .exit_code,
+            0);
+  EXPECT_EQ(readTextFile(tum), readTextFile(dir / "b.txt"));
+
+  RunResult c = runInterinet("trajectory convert " + tum + " " + csv);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(readTrajectory(csv).size(), 200u);
+  RunResult s = runInterinet("trajectory show " + csv + " --out " + (dir / "s.png").string());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "s.png"));
+
+  // a file against its own conversion scores zero; a shifted copy scores the shift after
+  // --align none and zero after se3
+  RunResult e = runInterinet("eval ate " + tum + " " + csv + " --json");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  auto j = nlohmann::json::parse(e.out);
+  EXPECT_EQ(j["pairs"], 200);
+  EXPECT_LT(j["translation_m"]["rmse"].get<double>(), 1e-6) << "EuRoC keeps every digit";
+  Trajectory moved = readTrajectory(tum);
+  for (auto& p : moved.poses) p.T_world_camera.t += Vec3(0.3, 0, 0.4);
+  writeTrajectory((dir / "moved.txt").string(), moved, TrajectoryFormat::Tum);
+  RunResult none =
+      runInterinet("eval ate " + tum + " " + (dir / "moved.txt").string() + " --align none --json");
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  auto jn = nlohmann::json::parse(none.out);
+  EXPECT_NEAR(jn["translation_m"]["min"].get<double>(), 0.5, 1e-6);  // |(0.3, 0, 0.4)|
+  EXPECT_NEAR(jn["translation_m"]["max"].get<double>(), 0.5, 1e-6);
+  RunResult se3 = runInterinet("eval ate " + tum + " " + (dir / "moved.txt").string() + " --json");
+  ASSERT_EQ(se3.exit_code, 0) << se3.err;
+  EXPECT_LT(nlohmann::json::parse(se3.out)["translation_m"]["rmse"].get<double>(), 1e-6);
+  RunResult bad = runInterinet("trajectory generate --type jog --out " + (dir / "x.txt").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--type"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.txt"));
+}
+
+}  // namespace
+}  // namespace inet::test

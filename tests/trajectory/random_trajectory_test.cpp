@@ -1,0 +1,257 @@
+// Base random trajectories (issue 5 acceptance): 100 of each type in 20 generated apartments,
+// every sample checked against the layout's own collision geometry (the exact distance to its
+// triangles and its pieces' collision boxes), heights, tilt, the look-at rules of each type,
+// and speeds that follow the multipliers.
+#include "trajectory/random_trajectory.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/error.h"
+#include "procedural/apartment.h"
+#include "../temp_dir.h"
+
+namespace inet {
+namespace {
+
+double spearman(std::vector<double> a, std::vector<double> b) {
+  auto ranks = [](const std::vector<double>& v) {
+    std::vector<size_t> idx(v.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::sort(idx.begin(), idx.end(), [&](size_t x, size_t y) { return v[x] < v[y]; });
+    std::vector<double> r(v.size());
+    for (size_t i = 0; i < idx.size(); ++i) r[idx[i]] = static_cast<double>(i);
+    return r;
+  };
+  std::vector<double> ra = ranks(a), rb = ranks(b);
+  const double n = static_cast<double>(a.size()), mean = (n - 1) / 2;
+  double num = 0, da = 0, db = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    num += (ra[i] - mean) * (rb[i] - mean);
+    da += (ra[i] - mean) * (ra[i] - mean);
+    db += (rb[i] - mean) * (rb[i] - mean);
+  }
+  return num / std::sqrt(da * db);
+}
+
+/// Mean horizontal speed (m/s) and mean angular speed of the viewing direction (rad/s) from
+/// the dense poses.
+std::pair<double, double> meanSpeeds(const Trajectory& dense) {
+  double v = 0, w = 0;
+  for (size_t i = 1; i < dense.size(); ++i) {
+    const double dt = (dense.poses[i].t_ns - dense.poses[i - 1].t_ns) * 1e-9;
+    Vec3 d = dense.poses[i].T_world_camera.t - dense.poses[i - 1].T_world_camera.t;
+    v += d.head<2>().norm() / dt;
+    Vec3 f0 = dense.poses[i - 1].T_world_camera.rotation().col(2);
+    Vec3 f1 = dense.poses[i].T_world_camera.rotation().col(2);
+    w += std::atan2(f0.cross(f1).norm(), f0.dot(f1)) / dt;
+  }
+  const double n = static_cast<double>(dense.size() - 1);
+  return {v / n, w / n};
+}
+
+class RandomTrajectories : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir("random_trajectory");
+    for (uint64_t seed = 0; seed < 20; ++seed) {
+      ApartmentOptions opt;
+      opt.seed = seed;
+      opt.texture_size = 64;
+      apartments_.push_back(makeApartment(opt, dir_->path(), dir_->path() / "textures"));
+    }
+  }
+  static void TearDownTestSuite() {
+    apartments_.clear();
+    delete dir_;
+  }
+
+  void checkType(MotionType type) {
+    std::vector<double> v_mult, w_mult, v_mean, w_mean, agreement;
+    int samples = 0;
+    double min_clear = 1e9;
+    for (size_t layout = 0; layout < apartments_.size(); ++layout) {
+      const Apartment& apt = apartments_[layout];
+      FreeSpace space(apt.scene);
+      WorldTriangles tris = worldTriangles(apt.scene);
+      ExactDistance exact(tris);
+      for (int n = 0; n < 5; ++n) {
+        RandomTrajectoryOptions opt;
+        opt.type = type;
+        opt.seed = layout * 1000 + n;
+        opt.frames = 125;  // 5 s at 25 Hz
+        opt.exposure_s = 0.01;
+        RandomTrajectory traj = generateRandomTrajectory(space, opt);
+        ASSERT_EQ(traj.frames.size(), 125u);
+        ASSERT_EQ(traj.shutter_close.size(), 125u);
+        EXPECT_EQ(traj.shutter_close.poses[3].t_ns - traj.frames.poses[3].t_ns, 10'000'000);
+        EXPECT_GE(traj.v_mult, 0.5);
+        EXPECT_LT(traj.v_mult, 5.0);
+        EXPECT_GE(traj.w_mult, 0.5);
+        EXPECT_LT(traj.w_mult, 3.0);
+        for (double tilt : traj.tilt_deg) EXPECT_LE(tilt, opt.max_tilt_deg + 1e-9);
+
+        std::vector<const TimedPose*> all;
+        for (const auto& p : traj.dense.poses) all.push_back(&p);
+        for (const auto& p : traj.frames.poses) all.push_back(&p);
+        for (const auto& p : traj.shutter_close.poses) all.push_back(&p);
+        for (const TimedPose* p : all) {
+          const Vec3 c = p->T_world_camera.t;
+          const Mat3 R = p->T_world_camera.rotation();
+          ++samples;
+          const double d = exact.distance(c, 5.0);
+          min_clear = std::min(min_clear, d);
+          ASSERT_GE(d, opt.clearance) << motionTypeName(type) << " layout " << layout << " traj "
+                                      << n << " t " << p->t_ns << " at " << c.transpose();
+          for (const PlacedPiece& piece : apt.pieces)
+            for (const auto& hull : piece.hulls)
+              ASSERT_FALSE(hull.contains(c)) << "inside " << piece.name;
+          bool in_room = false;
+          for (const Room& r : apt.scene.rooms) {
+            Eigen::AlignedBox2d box;
+            for (const auto& q : r.outline) box.extend(q);
+            // outlines run along the walls' inner faces; a doorway lies within the wall
+            box.min() -= Eigen::Vector2d::Constant(0.1);
+            box.max() += Eigen::Vector2d::Constant(0.1);
+            in_room = in_room || box.contains(c.head<2>());
+          }
+          ASSERT_TRUE(in_room) << "outside every room at " << c.transpose();
+          ASSERT_GE(c.z(), opt.min_height - 1e-9);
+          ASSERT_LE(c.z(), opt.max_height + 1e-9);
+          // roll: the image x axis leans at most the tilt limit out of the horizontal plane
+          ASSERT_LE(std::abs(std::asin(R.col(0).z())) * 180 / M_PI, opt.max_tilt_deg + 1e-6);
+          if (type == MotionType::HandHeld) {
+            ASSERT_LT(R.col(2).z(), 0.0) << "looks up";
+          }
+        }
+        if (type == MotionType::LookForward) {
+          // the view follows the motion: forward and velocity agree when moving
+          double agree = 0;
+          int moving = 0;
+          for (size_t k = 0; k < traj.frames.size(); ++k) {
+            Vec3 vel = traj.frames.velocityWorld(k);
+            if (vel.head<2>().norm() < 0.1) continue;
+            Vec3 f = traj.frames.poses[k].T_world_camera.rotation().col(2);
+            agree += f.head<2>().normalized().dot(vel.head<2>().normalized());
+            ++moving;
+          }
+          if (moving > 20) agreement.push_back(agree / moving);
+        }
+        auto [v, w] = meanSpeeds(traj.dense);
+        v_mult.push_back(traj.v_mult);
+        w_mult.push_back(traj.w_mult);
+        v_mean.push_back(v);
+        w_mean.push_back(w);
+      }
+    }
+    std::vector<double> ratio(v_mean.size());
+    for (size_t i = 0; i < ratio.size(); ++i) ratio[i] = v_mean[i] / (0.3 * v_mult[i]);
+    std::sort(ratio.begin(), ratio.end());
+    const double rho_v = spearman(v_mult, v_mean), rho_w = spearman(w_mult, w_mean);
+    // least-squares slope of log(mean speed) on log(multiplier): 1 means proportional
+    auto logSlope = [](const std::vector<double>& x, const std::vector<double>& y) {
+      double mx = 0, my = 0;
+      for (size_t i = 0; i < x.size(); ++i) mx += std::log(x[i]), my += std::log(y[i]);
+      mx /= x.size(), my /= y.size();
+      double sxy = 0, sxx = 0;
+      for (size_t i = 0; i < x.size(); ++i) {
+        sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);
+        sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
+      }
+      return sxy / sxx;
+    };
+    const double slope_v = logSlope(v_mult, v_mean), slope_w = logSlope(w_mult, w_mean);
+    std::printf("log-log slopes: speed %.2f, turn %.2f\n", slope_v, slope_w);
+    // log(turn) = a + b log(w_mult) + c log(v_mult): the turn rate's share of each multiplier
+    Eigen::MatrixXd X(w_mult.size(), 3);
+    Eigen::VectorXd y(w_mult.size());
+    for (size_t i = 0; i < w_mult.size(); ++i) {
+      X.row(i) << 1.0, std::log(w_mult[i]), std::log(v_mult[i]);
+      y[i] = std::log(w_mean[i]);
+    }
+    Eigen::Vector3d coef = X.colPivHouseholderQr().solve(y);
+    std::printf("log turn = %.2f + %.2f log w_mult + %.2f log v_mult\n", coef[0], coef[1], coef[2]);
+    if (!agreement.empty()) {
+      std::sort(agreement.begin(), agreement.end());
+      std::printf("look-forward agreement: 10%% %.2f median %.2f 90%% %.2f\n",
+                  agreement[agreement.size() / 10], agreement[agreement.size() / 2],
+                  agreement[agreement.size() * 9 / 10]);
+    }
+    std::printf("%s: %d samples, min clearance %.3f m, speed/(0.3 v_mult) median %.2f "
+                "(10%% %.2f, 90%% %.2f), Spearman(v_mult, speed) %.2f, Spearman(w_mult, turn) %.2f\n",
+                motionTypeName(type), samples, min_clear, ratio[ratio.size() / 2],
+                ratio[ratio.size() / 10], ratio[ratio.size() * 9 / 10], rho_v, rho_w);
+    EXPECT_EQ(v_mean.size(), 100u);
+    // Speeds follow v_mult: near proportional (walls of 3-4 m rooms cap the fastest, so the
+    // log-log slope is a little under 1) and near base_speed * v_mult.
+    EXPECT_GT(rho_v, 0.75);
+    EXPECT_GT(slope_v, 0.75);
+    EXPECT_LT(slope_v, 1.1);
+    EXPECT_GT(ratio[ratio.size() / 2], 0.5);
+    EXPECT_LT(ratio[ratio.size() / 2], 1.2);
+    if (type != MotionType::LookForward) {
+      // the view turns with w_mult and not with the camera's speed
+      EXPECT_GT(coef[1], 0.6);
+      EXPECT_LT(coef[1], 1.1);
+      EXPECT_LT(std::abs(coef[2]), 0.2);
+    } else {
+      // the view follows the velocity, so it turns with both multipliers
+      EXPECT_GT(coef[1], 0.25);
+      EXPECT_GT(coef[2], 0.2);
+      ASSERT_GE(agreement.size(), 80u);
+      EXPECT_GT(agreement[agreement.size() / 2], 0.8) << "the view looks where the camera goes";
+      EXPECT_GT(agreement[agreement.size() / 10], 0.5);
+    }
+  }
+
+  static test::TempDir* dir_;
+  static std::vector<Apartment> apartments_;
+};
+
+test::TempDir* RandomTrajectories::dir_ = nullptr;
+std::vector<Apartment> RandomTrajectories::apartments_;
+
+TEST_F(RandomTrajectories, TwoBody) { checkType(MotionType::TwoBody); }
+TEST_F(RandomTrajectories, HandHeld) { checkType(MotionType::HandHeld); }
+TEST_F(RandomTrajectories, LookForward) { checkType(MotionType::LookForward); }
+
+TEST(RandomTrajectory, SameSeedSameTrajectoryAndMultipliersCanBeSet) {
+  test::TempDir dir("random_trajectory_det");
+  ApartmentOptions aopt;
+  aopt.seed = 5;
+  aopt.texture_size = 64;
+  Apartment apt = makeApartment(aopt, dir.path(), dir.path() / "textures");
+  FreeSpace space(apt.scene);
+  RandomTrajectoryOptions opt;
+  opt.seed = 42;
+  opt.frames = 50;
+  opt.v_mult = 2.0;
+  opt.w_mult = 1.5;
+  RandomTrajectory a = generateRandomTrajectory(space, opt);
+  RandomTrajectory b = generateRandomTrajectory(space, opt);
+  EXPECT_EQ(a.v_mult, 2.0);
+  EXPECT_EQ(a.w_mult, 1.5);
+  ASSERT_EQ(a.dense.size(), b.dense.size());
+  for (size_t i = 0; i < a.dense.size(); ++i) {
+    EXPECT_EQ(a.dense.poses[i].T_world_camera.t, b.dense.poses[i].T_world_camera.t);
+    EXPECT_EQ(a.dense.poses[i].T_world_camera.q.coeffs(), b.dense.poses[i].T_world_camera.q.coeffs());
+  }
+  opt.seed = 43;
+  RandomTrajectory c = generateRandomTrajectory(space, opt);
+  EXPECT_NE(a.frames.poses[10].T_world_camera.t, c.frames.poses[10].T_world_camera.t);
+  // 50 frames at 25 Hz span 1.96 s; dense samples at 200 Hz cover it
+  EXPECT_EQ(a.dense.size(), 393u);
+  EXPECT_EQ(a.dense.poses.back().t_ns, 1'960'000'000);
+}
+
+TEST(RandomTrajectory, ParsesTypeNames) {
+  EXPECT_EQ(parseMotionType("hand-held"), MotionType::HandHeld);
+  EXPECT_STREQ(motionTypeName(parseMotionType("look-forward")), "look-forward");
+  EXPECT_THROW(parseMotionType("walk"), InputError);
+}
+
+}  // namespace
+}  // namespace inet
