@@ -127,7 +127,7 @@ void layoutStats(const std::string& in, const std::string& out) {
   }
   bar.finish();
   stats.write(out);
-  fmt::print("{} layouts: statistics (CSV and SVG charts) in {}\n", stats.layouts, out);
+  fmt::print("{} layouts: statistics (CSV tables and PNG charts) in {}\n", stats.layouts, out);
 }
 
 }  // namespace
@@ -162,7 +162,7 @@ void registerLayout(CLI::App& app) {
   auto* stats = layout->add_subcommand(
       "stats",
       "Statistics of many layouts (the paper's Fig. 3): rooms and objects per layout, object "
-      "categories, room types; CSV tables and SVG bar charts");
+      "categories, room types; CSV tables and PNG bar charts");
   auto stats_in = std::make_shared<std::string>();
   auto stats_out = std::make_shared<std::string>();
   stats->add_option("DIR", *stats_in, "folder with layout.json or sub-folders with one each")

@@ -568,9 +568,15 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
 void checkHeader(const Reader& r, const json& root) {
   if (!root.is_object())
     r.fail("", "expected a JSON object at the top level, got " + describe(root));
-  if (!root.contains("format"))
+  if (!root.contains("format")) {
+    // a 3D-FRONT house has "furniture" and "scene": say how to bring it in
+    const bool front3d = root.contains("furniture") && root.contains("scene");
     r.fail("format",
-           fmt::format("missing; a layout file declares \"format\": \"{}\"", kLayoutFormat));
+           fmt::format("missing; a layout file declares \"format\": \"{}\"{}", kLayoutFormat,
+                       front3d ? " (this looks like a 3D-FRONT house: convert it with "
+                                 "'interiornet layout import --from 3dfront')"
+                               : ""));
+  }
   if (!root["format"].is_string() || root["format"].get<std::string>() != kLayoutFormat)
     r.fail("format",
            fmt::format("expected \"{}\", got {}", kLayoutFormat, describe(root["format"])));

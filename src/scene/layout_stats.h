@@ -1,7 +1,7 @@
 #pragma once
 // Statistics over a set of layouts, like the InteriorNet paper's Fig. 3: object-category
 // occurrences, rooms per layout, objects per layout and the room-type distribution. Written as
-// CSV tables and as SVG bar charts (any web browser shows them; no plotting tool needed).
+// CSV tables and as PNG bar charts (core/plot.h; any image viewer shows them).
 #include <map>
 #include <string>
 #include <vector>
@@ -20,13 +20,9 @@ struct LayoutStats {
   /// Adds one layout. Furniture instances are the distinct instance ids whose kind is not part
   /// of the building shell (wall, floor, ceiling, skirting, door, window, ground).
   void add(const Scene& scene);
-  /// Writes rooms_per_layout.csv/.svg, objects_per_layout.csv/.svg, categories.csv/.svg and
-  /// room_types.csv/.svg into `dir` (atomically).
+  /// Writes rooms_per_layout.csv/.png, objects_per_layout.csv/.png, categories.csv/.png and
+  /// room_types.csv/.png into `dir` (atomically).
   void write(const std::string& dir) const;
 };
-
-/// A horizontal-label bar chart as SVG text: one bar per (label, value), in the given order.
-std::string barChartSvg(const std::string& title, const std::string& x_label,
-                        const std::vector<std::pair<std::string, double>>& bars);
 
 }  // namespace inet

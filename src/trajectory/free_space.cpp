@@ -160,20 +160,20 @@ WorldTriangles worldTriangles(const Scene& scene) {
   return out;
 }
 
-ExactDistance::ExactDistance(const WorldTriangles& tris) : tris_(tris) {
+ExactDistance::ExactDistance(WorldTriangles tris) : tris_(std::move(tris)) {
   device_ = rtcNewDevice("threads=1");  // point queries run on the caller's thread anyway
   INET_CHECK_MSG(device_ != nullptr, "rtcNewDevice failed");
   scene_ = rtcNewScene(device_);
-  if (!tris.triangles.empty()) {
+  if (!tris_.triangles.empty()) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), tris.positions.size()));
-    for (size_t i = 0; i < tris.positions.size(); ++i)
-      for (int c = 0; c < 3; ++c) v[3 * i + c] = tris.positions[i][c];
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), tris_.positions.size()));
+    for (size_t i = 0; i < tris_.positions.size(); ++i)
+      for (int c = 0; c < 3; ++c) v[3 * i + c] = tris_.positions[i][c];
     auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tris.triangles.size()));
-    for (size_t i = 0; i < tris.triangles.size(); ++i)
-      for (int c = 0; c < 3; ++c) idx[3 * i + c] = tris.triangles[i][c];
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tris_.triangles.size()));
+    for (size_t i = 0; i < tris_.triangles.size(); ++i)
+      for (int c = 0; c < 3; ++c) idx[3 * i + c] = tris_.triangles[i][c];
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -206,11 +206,11 @@ double ExactDistance::distance(const Vec3& p, double max_radius) const {
 }
 
 FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std::string& source)
-    : tris_(worldTriangles(scene)) {
+    : exact_(std::make_unique<ExactDistance>(worldTriangles(scene))) {
   INET_CHECK(opt.voxel > 0 && opt.max_voxels >= 1);
-  if (tris_.triangles.empty())
+  const WorldTriangles& tris = exact_->triangles();
+  if (tris.triangles.empty())
     throw InputError(source, "geometry", "the scene has no triangles to find free space in");
-  exact_ = std::make_unique<ExactDistance>(tris_);
 
   // ---- the domain: the rooms, or the geometry without building-sized planes (ground, sky) ----
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -225,11 +225,11 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
     hi.head<2>() += Eigen::Vector2d::Constant(0.3);
   } else {
     std::vector<Vec3> obj_lo(scene.objects.size(), lo), obj_hi(scene.objects.size(), hi);
-    for (size_t t = 0; t < tris_.triangles.size(); ++t)
+    for (size_t t = 0; t < tris.triangles.size(); ++t)
       for (int c = 0; c < 3; ++c) {
-        Vec3 p = tris_.positions[tris_.triangles[t][c]].cast<double>();
-        obj_lo[tris_.object[t]] = obj_lo[tris_.object[t]].cwiseMin(p);
-        obj_hi[tris_.object[t]] = obj_hi[tris_.object[t]].cwiseMax(p);
+        Vec3 p = tris.positions[tris.triangles[t][c]].cast<double>();
+        obj_lo[tris.object[t]] = obj_lo[tris.object[t]].cwiseMin(p);
+        obj_hi[tris.object[t]] = obj_hi[tris.object[t]].cwiseMax(p);
       }
     for (size_t o = 0; o < scene.objects.size(); ++o) {
       if (!(obj_lo[o].x() <= obj_hi[o].x())) continue;
@@ -258,10 +258,10 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
   // ---- occupancy: voxels whose centre lies within h of a triangle ----
   const double h = voxel_ * std::sqrt(3.0) / 2.0;
   std::vector<uint8_t> occupied(count, 0);
-  tbb::parallel_for(size_t(0), tris_.triangles.size(), [&](size_t t) {
-    const Tri& tri = tris_.triangles[t];
-    const Vec3 a = tris_.positions[tri[0]].cast<double>(), b = tris_.positions[tri[1]].cast<double>(),
-               c = tris_.positions[tri[2]].cast<double>();
+  tbb::parallel_for(size_t(0), tris.triangles.size(), [&](size_t t) {
+    const Tri& tri = tris.triangles[t];
+    const Vec3 a = tris.positions[tri[0]].cast<double>(), b = tris.positions[tri[1]].cast<double>(),
+               c = tris.positions[tri[2]].cast<double>();
     Vec3 tlo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(h);
     Vec3 thi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(h);
     Eigen::Vector3i i0 = ((tlo - origin_) / voxel_).array().ceil().cast<int>().max(0);

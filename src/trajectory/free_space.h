@@ -39,17 +39,19 @@ WorldTriangles worldTriangles(const Scene& scene);
 /// Exact distance from a point to the nearest triangle (Embree BVH + point query).
 class ExactDistance {
  public:
-  explicit ExactDistance(const WorldTriangles& tris);
+  /// Takes the triangles (a copy, or moved in): the object owns what it queries.
+  explicit ExactDistance(WorldTriangles tris);
   ~ExactDistance();
   ExactDistance(const ExactDistance&) = delete;
   ExactDistance& operator=(const ExactDistance&) = delete;
   /// Distance in metres to the closest triangle, or `max_radius` if none is closer.
   double distance(const Vec3& p, double max_radius = 1e3) const;
+  const WorldTriangles& triangles() const { return tris_; }
   /// The closest point on any triangle within `max_radius` (p itself if none).
   Vec3 closestPoint(const Vec3& p, double max_radius = 1e3) const;
 
  private:
-  const WorldTriangles& tris_;
+  WorldTriangles tris_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };
@@ -81,6 +83,7 @@ class FreeSpace {
   bool hasClearance(const Vec3& p, double clearance) const;
   /// The exact distance to the triangles, for final checks.
   double exactDistance(const Vec3& p) const { return exact_->distance(p, 10.0); }
+  const WorldTriangles& triangles() const { return exact_->triangles(); }
 
   /// Grid geometry and what it holds.
   double voxel() const { return voxel_; }
@@ -93,7 +96,7 @@ class FreeSpace {
   /// Floor area (m^2) of the free region at height z with the given clearance.
   double freeArea(double clearance, double z) const;
   /// Size of the build inputs, for messages and benchmarks.
-  size_t triangleCount() const { return tris_.triangles.size(); }
+  size_t triangleCount() const { return triangles().triangles.size(); }
   size_t occupiedVoxels() const { return occupied_count_; }
 
  private:
@@ -101,7 +104,6 @@ class FreeSpace {
   /// Interpolated EDT (m); -1 outside the grid or next to an outdoor voxel.
   double field(const Vec3& p) const;
 
-  WorldTriangles tris_;
   std::unique_ptr<ExactDistance> exact_;
   double voxel_ = 0.05;
   Vec3 origin_ = Vec3::Zero();

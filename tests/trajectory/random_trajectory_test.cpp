@@ -8,10 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 
 #include "core/error.h"
 #include "procedural/apartment.h"
+#include "scene/assimp_importer.h"
+#include "scene/front3d_importer.h"
 #include "../temp_dir.h"
 
 namespace inet {
@@ -251,6 +254,53 @@ TEST(RandomTrajectory, ParsesTypeNames) {
   EXPECT_EQ(parseMotionType("hand-held"), MotionType::HandHeld);
   EXPECT_STREQ(motionTypeName(parseMotionType("look-forward")), "look-forward");
   EXPECT_THROW(parseMotionType("walk"), InputError);
+}
+
+}  // namespace
+}  // namespace inet
+
+namespace inet {
+namespace {
+
+/// Imported scenes (the issue's "generate --layout imported.json finds free space and makes a
+/// trajectory inside the rooms"): every SceneNet RGB-D layout, SceneNet v1 and the 3D-FRONT house
+/// of ../shared get a 10 s trajectory of each type that keeps its clearance from the triangles.
+TEST(RandomTrajectory, ImportedScenesGetCollisionFreeTrajectories) {
+  namespace fs = std::filesystem;
+  const fs::path scenes = fs::path(INET_SHARED_DIR) / "data" / "scenes";
+  if (!fs::exists(scenes)) GTEST_SKIP() << "needs ../shared/data/scenes (absent)";
+  std::vector<std::pair<std::string, Scene>> imported;
+  for (const auto& e : fs::recursive_directory_iterator(scenes)) {
+    const std::string p = e.path().string();
+    if (e.path().extension() != ".obj" || p.find("scenenet") == std::string::npos) continue;
+    ImportOptions opt;
+    opt.up = 'y';
+    imported.emplace_back(e.path().filename().string(), importMeshScene(p, opt));
+  }
+  for (const auto& e : fs::directory_iterator(scenes / "3d_front"))
+    imported.emplace_back(e.path().filename().string(), importFront3d(e.path().string(), {}));
+  std::sort(imported.begin(), imported.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  EXPECT_GE(imported.size(), 13u) << "11 SceneNet RGB-D layouts, SceneNet v1, 3D-FRONT";
+  for (const auto& [name, scene] : imported) {
+    FreeSpace space(scene, {}, name);
+    ExactDistance exact(worldTriangles(scene));
+    for (MotionType type : {MotionType::TwoBody, MotionType::HandHeld, MotionType::LookForward}) {
+      RandomTrajectoryOptions opt;
+      opt.type = type;
+      opt.seed = 7;
+      opt.frames = 250;
+      RandomTrajectory traj = generateRandomTrajectory(space, opt, name);
+      double min_d = 1e9;
+      for (const auto& p : traj.dense.poses) min_d = std::min(min_d, exact.distance(p.T_world_camera.t, 5));
+      EXPECT_GE(min_d, opt.clearance) << name << " " << motionTypeName(type);
+      // it moves: a trajectory stuck in a corner would pass the clearance check trivially
+      const Vec3 a = traj.frames.poses.front().T_world_camera.t;
+      double furthest = 0;
+      for (const auto& p : traj.frames.poses) furthest = std::max(furthest, (p.T_world_camera.t - a).norm());
+      EXPECT_GT(furthest, 0.3) << name << " " << motionTypeName(type);
+    }
+  }
 }
 
 }  // namespace
