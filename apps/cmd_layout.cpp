@@ -67,6 +67,7 @@ struct GenerateLayoutArgs {
   int count = 1;
   int texture_size = 256;
   bool daylight = true;
+  std::string style = "any";
   std::string out;
 };
 
@@ -81,6 +82,8 @@ void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesyst
   opt.rooms = a.rooms;
   opt.texture_size = a.texture_size;
   opt.daylight = a.daylight;
+  opt.random_style = a.style == "random";
+  if (!opt.random_style) opt.style = parseDecorStyle(a.style);
   Apartment apt = makeApartment(opt, dir, textures);
   saveLayout(apt.scene, (dir / "layout.json").string());
   saveLightXml(apt.scene, (dir / "light.xml").string());
@@ -90,6 +93,7 @@ void generateLayouts(const GenerateLayoutArgs& a) {
   namespace fs = std::filesystem;
   if (a.out.empty()) throw InputError("", "--out", "an output folder is needed");
   if (a.count < 1) throw InputError("", "--count", "must be >= 1");
+  if (a.style != "random") parseDecorStyle(a.style);  // a bad --style fails before any work
   if (a.count == 1) {
     generateOne(a, a.seed, a.out, fs::path(a.out) / "textures");
     fmt::print("wrote {}/layout.json and light.xml\n", a.out);
@@ -156,6 +160,10 @@ void registerLayout(CLI::App& app) {
   gen->add_option("--texture-size", gen_args->texture_size,
                   "texels per side of the procedural textures (power of two, default 256)");
   gen->add_flag("!--no-daylight", gen_args->daylight, "no sky or sun through the windows");
+  gen->add_option("--style", gen_args->style,
+                  "decoration: any (every material variant alike, default), modern, scandinavian, "
+                  "classic, industrial, or random (one of the four per seed); changes materials "
+                  "and wall and floor colours, not what is placed");
   gen->add_option("--out", gen_args->out, "output folder")->required();
   gen->callback([gen_args] { generateLayouts(*gen_args); });
 

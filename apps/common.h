@@ -104,6 +104,7 @@ void registerLayout(CLI::App& app);
 void registerBench(CLI::App& app);
 void registerTrajectory(CLI::App& app);
 void registerEval(CLI::App& app);
+void registerImu(CLI::App& app);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 
 }  // namespace inet::app

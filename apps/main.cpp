@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   inet::app::registerBench(app);
   inet::app::registerTrajectory(app);
   inet::app::registerEval(app);
+  inet::app::registerImu(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -87,7 +87,14 @@ class Builder {
       : opt_(opt),
         rng_(opt.seed, RngStream::Layout, 1, 0, 0),
         layout_dir_(fs::absolute(layout_dir)),
-        texture_dir_(fs::absolute(texture_dir)) {}
+        texture_dir_(fs::absolute(texture_dir)) {
+    style_ = opt.style;
+    if (opt.random_style) {  // its own stream, so the rest of the apartment draws the same numbers
+      CounterRng style_rng(opt.seed, RngStream::Layout, 2, 0, 0);
+      const auto& all = decorStyles();
+      style_ = all[std::min(all.size() - 1, static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
+    }
+  }
 
   Apartment build() {
     CounterRng plan_rng(opt_.seed, RngStream::Layout, 0, 0, 0);
@@ -334,11 +341,20 @@ class Builder {
   void shell() {
     const FloorPlan& plan = apt_.plan;
     const double t = plan.wall_thickness, H = plan.ceiling;
-    const float paint = static_cast<float>(rng_.uniformDouble(0.55, 0.8));
+    // wall paint: lightness range and warmth (blue share) by style; three draws in every style
+    double lo = 0.55, hi = 0.8, blue_lo = 0.85, blue_hi = 0.98;
+    switch (style_) {
+      case DecorStyle::Scandinavian: lo = 0.75, hi = 0.85, blue_lo = 0.95, blue_hi = 1.0; break;
+      case DecorStyle::Modern: lo = 0.45, hi = 0.75, blue_lo = 0.97, blue_hi = 1.03; break;
+      case DecorStyle::Classic: lo = 0.55, hi = 0.72, blue_lo = 0.72, blue_hi = 0.85; break;
+      case DecorStyle::Industrial: lo = 0.35, hi = 0.5, blue_lo = 0.95, blue_hi = 1.0; break;
+      case DecorStyle::Any: break;
+    }
+    const float paint = static_cast<float>(rng_.uniformDouble(lo, hi));
     const MaterialSpec wall =
         plain("wall_paint",
               Vec3f(paint, paint * static_cast<float>(rng_.uniformDouble(0.95, 1.0)),
-                    paint * static_cast<float>(rng_.uniformDouble(0.85, 0.98))),
+                    paint * static_cast<float>(rng_.uniformDouble(blue_lo, blue_hi))),
               TextureKind::Plaster, 1.5f);
     const MaterialSpec ceiling =
         plain("ceiling_white", Vec3f(0.8f, 0.8f, 0.8f), TextureKind::None, 1.f);
@@ -415,7 +431,7 @@ class Builder {
       } else if (carpet) {
         floor = plain("floor_carpet", Vec3f(0.35f, 0.3f, 0.28f), TextureKind::Carpet, 1.f);
       } else {
-        floor = plain("floor_wood", Vec3f(0.38f, 0.24f, 0.13f), TextureKind::Wood, 1.5f,
+        floor = plain("floor_wood", woodFloorColour(), TextureKind::Wood, 1.5f,
                       MaterialType::Plastic, 0.45f);
       }
       const Vec3 lo(r.box.min().x(), r.box.min().y(), -0.05),
@@ -468,7 +484,7 @@ class Builder {
       FurnitureSizeHint hint;
       hint.width = d.to - d.from - 0.02;
       hint.height = d.height - 0.01;
-      FurnitureModel m = makeFurnitureSized("door", hint, rng_);
+      FurnitureModel m = make("door", hint);
       inWall(m, d.vertical, d.line, 0.5 * (d.from + d.to), 0.0, d.a);
     }
     for (const PlanWindow& w : plan.windows) {
@@ -476,7 +492,7 @@ class Builder {
       FurnitureSizeHint hint;
       hint.width = w.to - w.from - 0.02;
       hint.height = w.top - w.sill - 0.02;
-      FurnitureModel m = makeFurnitureSized("window", hint, rng_);
+      FurnitureModel m = make("window", hint);
       inWall(m, w.vertical, w.line, 0.5 * (w.from + w.to), w.sill + 0.01, w.room);
     }
   }
@@ -568,12 +584,30 @@ class Builder {
     return true;
   }
 
+  /// Parquet colour by style: light ash, grey oak, dark walnut, smoked oak; oak otherwise.
+  Vec3f woodFloorColour() const {
+    switch (style_) {
+      case DecorStyle::Scandinavian: return {0.62f, 0.50f, 0.36f};
+      case DecorStyle::Modern: return {0.36f, 0.32f, 0.28f};
+      case DecorStyle::Classic: return {0.22f, 0.12f, 0.06f};
+      case DecorStyle::Industrial: return {0.16f, 0.12f, 0.09f};
+      case DecorStyle::Any: break;
+    }
+    return {0.38f, 0.24f, 0.13f};
+  }
+
+  /// A model of `category` in the apartment's decoration style.
+  FurnitureModel make(const std::string& category, FurnitureSizeHint hint = {}) {
+    hint.style = style_;
+    return makeFurnitureSized(category, hint, rng_);
+  }
+
   /// Tries to stand `category` against a wall (sides in `sides`, or all); returns the piece
   /// index or -1. `along` fixes the position along the wall when >= 0 (0..1 of the free span).
   int againstWall(RoomState& s, const std::string& category, std::vector<int> sides = {},
                   const FurnitureSizeHint& hint = {}) {
     if (!known(category)) return -1;
-    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
+    FurnitureModel m = make(category, hint);
     const double w = m.size.x(), d = m.size.y(), h = m.size.z();
     if (s.occupied + w * d > kMaxOccupied * s.interior.volume()) return -1;
     if (sides.empty()) sides = {0, 1, 2, 3};
@@ -616,7 +650,7 @@ class Builder {
   int at(RoomState& s, const std::string& category, const Eigen::Vector2d& c, double yaw,
          const FurnitureSizeHint& hint = {}) {
     if (!known(category)) return -1;
-    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
+    FurnitureModel m = make(category, hint);
     const bool flat = category == "rug";
     const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
     if (!flat && s.occupied + fp.volume() > kMaxOccupied * s.interior.volume()) return -1;
@@ -644,7 +678,7 @@ class Builder {
     if (piece < 0 || !known(category)) return -1;
     const double yaw = pieceYaw(piece);
     const Eigen::Vector2d front(std::sin(yaw), -std::cos(yaw));  // model -y in world
-    FurnitureModel m = makeFurniture(category, rng_);
+    FurnitureModel m = make(category);
     const Box2 fp = footprintOf(piece);
     const double depth = std::fabs(front.x()) > 0.5 ? fp.sizes().x() : fp.sizes().y();
     const Eigen::Vector2d c = fp.center() + front * (depth / 2 + gap + m.size.y() / 2);
@@ -656,7 +690,7 @@ class Builder {
     if (piece < 0 || !known(category)) return -1;
     const double yaw = pieceYaw(piece);
     const Eigen::Vector2d right(std::cos(yaw), std::sin(yaw));  // model +x in world
-    FurnitureModel m = makeFurniture(category, rng_);
+    FurnitureModel m = make(category);
     const Box2 fp = footprintOf(piece);
     const double width = std::fabs(right.x()) > 0.5 ? fp.sizes().x() : fp.sizes().y();
     const double depth = std::fabs(right.x()) > 0.5 ? fp.sizes().y() : fp.sizes().x();
@@ -697,7 +731,7 @@ class Builder {
     if (support < 0 || !known(category) || !models_.count(support)) return -1;
     const FurnitureModel& sm = models_.at(support);
     if (!sm.is_support || sm.support_heights.empty()) return -1;
-    FurnitureModel m = makeFurniture(category, rng_);
+    FurnitureModel m = make(category);
     const double z =
         level < 0 ? sm.support_heights.back()
                   : sm.support_heights[std::min<size_t>(level, sm.support_heights.size() - 1)];
@@ -735,7 +769,7 @@ class Builder {
   /// wall it shares) or on a free stretch of wall.
   int onWall(RoomState& s, const std::string& category, int below = -1, double height = -1) {
     if (!known(category)) return -1;
-    FurnitureModel m = makeFurniture(category, rng_);
+    FurnitureModel m = make(category);
     const double z = height >= 0 ? height : m.mount_height;
     const Box2& in = s.interior;
     std::vector<int> sides = {0, 1, 2, 3};
@@ -787,7 +821,7 @@ class Builder {
   void ceilingLight(RoomState& s) {
     const std::string cat = known("ceiling_light") ? "ceiling_light" : "pendant_light";
     if (!known(cat)) return;
-    FurnitureModel m = makeFurniture(cat, rng_);
+    FurnitureModel m = make(cat);
     const Eigen::Vector2d c = s.interior.center();
     const double z = apt_.plan.ceiling - m.size.z();
     const int piece = add(m, placement(Vec3(c.x(), c.y(), z), 0.0), s.index, false);
@@ -802,7 +836,7 @@ class Builder {
       FurnitureSizeHint hint;
       hint.width = std::min(w.to - w.from + 0.4, 3.0);
       hint.height = std::max(0.5, std::min(plan.ceiling - 0.15, w.top + 0.1) - 0.05);
-      FurnitureModel m = makeFurnitureSized("curtain", hint, rng_);
+      FurnitureModel m = make("curtain", hint);
       const Box2& in = s.interior;
       const Box2& rb = plan.rooms[s.index].box;
       int side;
@@ -993,7 +1027,7 @@ class Builder {
     const int slot = (k / 2) % per_side;
     if (k / 2 >= per_side) return;
     if (!known("dining_chair")) return;
-    FurnitureModel probe = makeFurniture("dining_chair", rng_);
+    FurnitureModel probe = make("dining_chair");
     const double offset = -0.5 * (per_side - 1) * 0.6 + slot * 0.6;
     Eigen::Vector2d pos;
     double yaw;
@@ -1041,6 +1075,7 @@ class Builder {
 
   const ApartmentOptions& opt_;
   CounterRng rng_;
+  DecorStyle style_ = DecorStyle::Any;
   fs::path layout_dir_, texture_dir_;
   Apartment apt_;
   std::map<std::string, int> materials_, meshes_, count_;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "procedural/floorplan.h"
+#include "procedural/furniture.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -30,6 +31,8 @@ struct ApartmentOptions {
   int rooms = 0;           ///< 1..16; 0 = drawn from the room-count distribution
   int texture_size = 256;  ///< texels per side of the procedural textures
   bool daylight = true;    ///< sky and sun through the windows
+  DecorStyle style = DecorStyle::Any;  ///< materials and colours (furniture.h)
+  bool random_style = false;  ///< draw one of decorStyles() per seed (overrides `style`)
 };
 
 /// A placed piece of furniture: what the checks and statistics need.

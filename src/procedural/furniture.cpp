@@ -183,6 +183,62 @@ const std::vector<std::string>& furnitureCategories() {
   return names;
 }
 
+DecorStyle parseDecorStyle(const std::string& name, const std::string& field) {
+  for (DecorStyle s : {DecorStyle::Any, DecorStyle::Modern, DecorStyle::Scandinavian,
+                       DecorStyle::Classic, DecorStyle::Industrial})
+    if (name == decorStyleName(s)) return s;
+  throw InputError("", field,
+                   fmt::format("unknown style '{}' (any, modern, scandinavian, classic, industrial)",
+                               name));
+}
+
+const char* decorStyleName(DecorStyle s) {
+  switch (s) {
+    case DecorStyle::Any: return "any";
+    case DecorStyle::Modern: return "modern";
+    case DecorStyle::Scandinavian: return "scandinavian";
+    case DecorStyle::Classic: return "classic";
+    case DecorStyle::Industrial: return "industrial";
+  }
+  return "?";
+}
+
+const std::vector<DecorStyle>& decorStyles() {
+  static const std::vector<DecorStyle> all = {DecorStyle::Modern, DecorStyle::Scandinavian,
+                                              DecorStyle::Classic, DecorStyle::Industrial};
+  return all;
+}
+
+double styleWeight(DecorStyle style, const MaterialSpec& m) {
+  if (style == DecorStyle::Any) return 1.0;
+  const Vec3f& a = m.albedo;
+  const double lum = 0.2126 * a.x() + 0.7152 * a.y() + 0.0722 * a.z();
+  const double warmth = (a.x() - a.z()) / std::max(1e-3f, a.x() + a.y() + a.z());
+  // targets: luminance, warmth (red minus blue share), and a factor per material type
+  double target_lum = 0.5, target_warmth = 0.0, type = 1.0;
+  const bool glossy = m.type == MaterialType::Plastic || m.type == MaterialType::Conductor;
+  switch (style) {
+    case DecorStyle::Scandinavian:  // light, soft, matte
+      target_lum = 0.6, target_warmth = 0.1, type = glossy ? 0.5 : 1.0;
+      break;
+    case DecorStyle::Modern:  // neutral greys and whites, lacquer and metal
+      target_lum = 0.45, target_warmth = 0.0, type = glossy ? 1.5 : 1.0;
+      break;
+    case DecorStyle::Classic:  // dark warm woods, leather
+      target_lum = 0.15, target_warmth = 0.3, type = 1.0;
+      break;
+    case DecorStyle::Industrial:  // dark, neutral, metal
+      target_lum = 0.1, target_warmth = 0.05, type = m.type == MaterialType::Conductor ? 2.0 : 1.0;
+      break;
+    case DecorStyle::Any: break;
+  }
+  auto gauss = [](double x, double mu, double sigma) {
+    return std::exp(-0.5 * (x - mu) * (x - mu) / (sigma * sigma));
+  };
+  // a floor of 0.02 keeps every variant possible, so no style empties a palette
+  return 0.02 + type * gauss(lum, target_lum, 0.2) * gauss(warmth, target_warmth, 0.2);
+}
+
 FurnitureModel makeFurniture(const std::string& category, CounterRng& rng,
                              const std::string& where) {
   return makeFurnitureSized(category, {}, rng, where);

@@ -98,8 +98,22 @@ struct FurnitureModel {
 /// or height (z) (a bed's mattress size, a cabinet's carcass); protruding handles, rails or
 /// headboards may make `size` slightly larger. Doors and windows take their frame's outer size
 /// (the wall opening; a window's sill reaches 3 cm further on each side, on the room face).
+/// Interior decoration styles. A style does not change what is placed, only which material
+/// variants are preferred (procedural/furniture_builder.h: DecorStyle weights) and the colours of
+/// walls and floors. Any = every variant equally likely (the generator's original behaviour).
+enum class DecorStyle { Any, Modern, Scandinavian, Classic, Industrial };
+/// "any", "modern", "scandinavian", "classic", "industrial"; InputError(field) otherwise.
+DecorStyle parseDecorStyle(const std::string& name, const std::string& field = "--style");
+const char* decorStyleName(DecorStyle s);
+/// The four real styles, for drawing one at random.
+const std::vector<DecorStyle>& decorStyles();
+/// How much `style` likes a material (> 0; 1 for DecorStyle::Any): a product of Gaussians in the
+/// albedo's luminance and warmth around the style's targets and a factor for its type.
+double styleWeight(DecorStyle style, const MaterialSpec& m);
+
 struct FurnitureSizeHint {
   std::optional<double> width, depth, height;
+  DecorStyle style = DecorStyle::Any;
 };
 
 /// Lower-case name of a placement ("floor", "wall", "ceiling", "on_surface", "in_wall").

@@ -252,7 +252,14 @@ int Builder::material(std::string_view name) {
 
 int Builder::pick(Palette p) {
   const auto& v = palette(p);
-  return material(v[integer(0, static_cast<int>(v.size()) - 1)]);
+  if (hint_.style == DecorStyle::Any) return material(v[integer(0, static_cast<int>(v.size()) - 1)]);
+  // a style weighs the variants: one uniform draw against the cumulative weights
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (const MaterialSpec& m : v) cumulative.push_back(total += styleWeight(hint_.style, m));
+  const double u = uniform(0.0, total);
+  const size_t k = std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin();
+  return material(v[std::min(k, v.size() - 1)]);
 }
 
 void Builder::rotated(const std::string& name, const char* primitive, int mat, const Vec3& centre,

@@ -239,6 +239,8 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
     }
     if (!(lo.x() <= hi.x()))
       throw InputError(source, "geometry", "the scene is only planes larger than 50 m");
+    // room for cameras at up to 2 m (and their clearance) above low scenes without a ceiling
+    hi.z() = std::max(hi.z(), lo.z() + 2.8);
   }
   lo -= Vec3::Constant(0.1);
   hi += Vec3::Constant(0.1);
@@ -397,10 +399,17 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
   pass(ny_, nx_, nz_, [&](int q, int a, int b) { return index(a, q, b); });
   pass(nz_, nx_, ny_, [&](int q, int a, int b) { return index(a, b, q); });
   const double far = voxel_ * (nx_ + ny_ + nz_);
+  // the grid's faces count as obstacles too: an open scene (no walls on a side) must not let a
+  // camera sit at the edge of the grid, where every step leaves it
   dist_.assign(count, -1.f);
-  for (size_t id = 0; id < count; ++id)
-    if (indoor[id] || occupied[id])
-      dist_[id] = static_cast<float>(std::min(far, std::sqrt(sq[id]) * voxel_));
+  for (int k = 0; k < nz_; ++k)
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        const size_t id = index(i, j, k);
+        if (!indoor[id] && !occupied[id]) continue;
+        const int border = std::min({i, j, k, nx_ - 1 - i, ny_ - 1 - j, nz_ - 1 - k});
+        dist_[id] = static_cast<float>(std::min({far, std::sqrt(sq[id]) * voxel_, border * voxel_}));
+      }
 }
 
 double FreeSpace::field(const Vec3& p) const {

@@ -12,6 +12,7 @@
 // "Indoors" keeps cameras inside the building: with rooms, inside a room's outline between its
 // floor and ceiling; without (imported OBJ scenes), the free voxels that cannot be reached from
 // the grid's border, i.e. enclosed by geometry. An open scene (no enclosed volume) counts whole.
+// The grid's faces count as geometry (an open scene's camera stays inside the box).
 // Of that, only the biggest connected free region (and any other larger than 20 m^3) stays
 // indoors: the enclosed insides of closed furniture are unreachable.
 #include <embree3/rtcore.h>

@@ -17,6 +17,7 @@ constexpr double kDrag = 1.0;       // k: velocity decays as exp(-k t) without f
 constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
 constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
 constexpr double kWallBand = 0.4;   // distance beyond the clearance where walls start to push
+constexpr double kMaxYawRate = 1.2;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
 constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
 
 /// Standard normal from two uniforms (Box-Muller; one value per call keeps draws simple).
@@ -98,15 +99,18 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
                           static_cast<size_t>(rng.uniformDouble() * starts.size()))];
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
-  s.target = s.cam + Vec3(look_dist, 0, -0.3);
-  for (int attempt = 0; attempt < 32; ++attempt) {
-    double a = 2 * M_PI * rng.uniformDouble();
-    Vec3 t = s.cam + Vec3(look_dist * std::cos(a), look_dist * std::sin(a), -0.3);
-    if (space.lowerBound(t) > 0.05) {
-      s.target = t;
-      break;
-    }
+  // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
+  // broken by a random rotation of the fan), so a trajectory does not open facing a wall
+  const double fan = 2 * M_PI * rng.uniformDouble();
+  double best_range = -1.0, best_heading = fan;
+  for (int h = 0; h < 16; ++h) {
+    const double a = fan + 2 * M_PI * h / 16;
+    const Vec3 dir(std::cos(a), std::sin(a), 0);
+    double range = 0.0;
+    while (range < 5.0 && space.lowerBound(s.cam + (range + 0.1) * dir) > 0.0) range += 0.1;
+    if (range > best_range) best_range = range, best_heading = a;
   }
+  s.target = s.cam + Vec3(look_dist * std::cos(best_heading), look_dist * std::sin(best_heading), -0.3);
 
   // ---- forces ----
   // look-forward: the heading is the velocity's direction, which forgets itself at the drag rate
@@ -154,6 +158,22 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       Vec3 g = space.gradient(s.cam);
       if (g.norm() > 1e-9) a += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
     }
+    if (forward && vh.norm() > 0.05) {
+      // a walker steers round what is ahead instead of bouncing off it: look ahead along the
+      // heading and turn towards the freer side, braking as the obstacle nears
+      const double speed = vh.norm(), look = 0.4 + 1.0 * speed;
+      const double ahead = space.lowerBound(s.cam + look * heading);
+      const double want = clear + 0.3;
+      if (ahead < want) {
+        const Vec3 left(-heading.y(), heading.x(), 0);
+        const double c = std::cos(M_PI / 3), sn = std::sin(M_PI / 3);
+        const double dl = space.lowerBound(s.cam + look * (c * heading + sn * left));
+        const double dr = space.lowerBound(s.cam + look * (c * heading - sn * left));
+        const double urgency = std::clamp((want - ahead) / want, 0.0, 1.0);
+        a += urgency * (speed * speed / 0.4) * (dl >= dr ? left : Vec3(-left));
+        a -= urgency * 1.0 * vh;
+      }
+    }
     const double mid = 0.5 * (h_lo + h_hi);
     a.z() += -1.0 * (s.cam.z() - mid);  // weak pull to mid-height, so heights vary but stay
     v_cam += a * kSimDt;
@@ -187,6 +207,9 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       const double want = std::atan2(heading.y(), heading.x());
       const double err = std::remainder(want - yaw, 2.0 * M_PI);
       yaw_rate += (kp * err - kd * yaw_rate + 0.5 * target_force.value.x()) * kSimDt;
+      // a person turns at most ~1.2 rad/s at w_mult 1 (a bounce off a wall would otherwise
+      // swing the view around at over 9 rad/s)
+      yaw_rate = std::clamp(yaw_rate, -kMaxYawRate * out.w_mult, kMaxYawRate * out.w_mult);
       yaw += yaw_rate * kSimDt;
       pitch += (-2.0 * (pitch + 0.15) + 0.3 * target_force.value.z()) * kSimDt;
       pitch = std::clamp(pitch, -0.6, 0.3);

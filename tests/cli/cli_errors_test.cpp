@@ -118,8 +118,10 @@ std::vector<Case> cases() {
        {{"l.json", layoutWith(kGoodObject)}, {"traj.txt", "1.0 0 -3 0 0 0 0 2\n"}},
        "--layout {D}/l.json" + traj_args,
        {"traj.txt", "quaternion"}},
-      {"layout_without_room_for_a_camera",
-       {{"l.json", layoutWith(kGoodObject)}},
+      {"layout_without_room_for_a_camera",  // a 0.3 m cube: no place 0.25 m from it in its box
+       {{"l.json", layoutWith(R"({"name": "cube", "mesh": "box", "material": "white",
+            "nyu40": 29, "instance": 1,
+            "transform": [0.3,0,0,0, 0,0.3,0,0, 0,0,0.3,0, 0,0,0,1]})")}},
        "--layout {D}/l.json",
        {"l.json", "free space", "--trajectory"}},
       {"too_many_frames",

@@ -14,6 +14,7 @@
 #include "../temp_dir.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "core/rng.h"
 #include "render/renderer.h"
 #include "scene/layout_json.h"
 #include "scene/layout_stats.h"
@@ -175,6 +176,59 @@ TEST(Apartment, BuildsAndRendersWithLabels) {
 
 namespace inet {
 namespace {
+
+/// Mean luminance of the material colours (MaterialSpec albedo: a texture's mean colour) of
+/// 200 pieces of each of a few categories in `style`.
+double styleLuminance(DecorStyle style) {
+  double sum = 0;
+  int n = 0;
+  for (const char* category : {"sofa", "wardrobe", "dining_table", "bookshelf", "armchair"})
+    for (uint32_t i = 0; i < 200; ++i) {
+      CounterRng rng(5, RngStream::Layout, 9, i, 0);
+      FurnitureSizeHint hint;
+      hint.style = style;
+      for (const MaterialSpec& m : makeFurnitureSized(category, hint, rng).materials) {
+        sum += 0.2126 * m.albedo.x() + 0.7152 * m.albedo.y() + 0.0722 * m.albedo.z();
+        ++n;
+      }
+    }
+  return sum / n;
+}
+
+// A style changes materials, not placement: same pieces in the same places, lighter materials
+// for scandinavian than for classic over several seeds, and "any" is the unstyled generator.
+TEST(Apartment, DecorationStylesChangeMaterialsNotPlacement) {
+  TempDir dir("apartment_style");
+  for (uint64_t seed : {1u, 2u, 3u, 4u}) {
+    ApartmentOptions opt;
+    opt.seed = seed;
+    opt.texture_size = 64;
+    opt.style = DecorStyle::Scandinavian;
+    Apartment a = makeApartment(opt, dir.path(), dir.path() / "textures");
+    opt.style = DecorStyle::Classic;
+    Apartment b = makeApartment(opt, dir.path(), dir.path() / "textures");
+    ASSERT_EQ(a.pieces.size(), b.pieces.size()) << "seed " << seed;
+    for (size_t i = 0; i < a.pieces.size(); ++i)
+      EXPECT_EQ(a.pieces[i].category, b.pieces[i].category) << "seed " << seed << " piece " << i;
+  }
+  const double any = styleLuminance(DecorStyle::Any);
+  const double scandinavian = styleLuminance(DecorStyle::Scandinavian);
+  const double classic = styleLuminance(DecorStyle::Classic);
+  std::printf("mean material luminance: any %.3f, scandinavian %.3f, classic %.3f\n", any,
+              scandinavian, classic);
+  EXPECT_GT(scandinavian, 1.3 * classic);
+  EXPECT_GT(scandinavian, any);
+  EXPECT_LT(classic, any);
+  EXPECT_EQ(parseDecorStyle("industrial"), DecorStyle::Industrial);
+  EXPECT_THROW(parseDecorStyle("baroque"), InputError);
+  // weights: a dark warm wood suits classic more than scandinavian, a light ash the reverse
+  MaterialSpec walnut, ash;
+  walnut.albedo = {0.20f, 0.12f, 0.07f};
+  ash.albedo = {0.72f, 0.66f, 0.56f};
+  EXPECT_GT(styleWeight(DecorStyle::Classic, walnut), styleWeight(DecorStyle::Scandinavian, walnut));
+  EXPECT_GT(styleWeight(DecorStyle::Scandinavian, ash), styleWeight(DecorStyle::Classic, ash));
+  EXPECT_EQ(styleWeight(DecorStyle::Any, ash), 1.0);
+}
 
 TEST(LayoutStats, CountsRoomsObjectsCategoriesAndWritesCharts) {
   TempDir dir;

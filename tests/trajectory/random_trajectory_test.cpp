@@ -201,9 +201,10 @@ class RandomTrajectories : public ::testing::Test {
       EXPECT_LT(coef[1], 1.1);
       EXPECT_LT(std::abs(coef[2]), 0.2);
     } else {
-      // the view follows the velocity, so it turns with both multipliers
-      EXPECT_GT(coef[1], 0.25);
-      EXPECT_GT(coef[2], 0.2);
+      // the view follows the velocity, whose direction turns with w_mult (and steering round
+      // obstacles adds turns that grow with speed)
+      EXPECT_GT(coef[1], 0.5);
+      EXPECT_GT(coef[2], -0.1);
       ASSERT_GE(agreement.size(), 80u);
       EXPECT_GT(agreement[agreement.size() / 2], 0.8) << "the view looks where the camera goes";
       EXPECT_GT(agreement[agreement.size() / 10], 0.5);
