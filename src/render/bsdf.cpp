@@ -232,9 +232,13 @@ std::optional<BsdfSample> sampleDielectric(const BsdfParams& p, const Vec3f& wo,
 //   R = F + (1 - F)^2 F (1 + F^2 + F^4 + ...) = 2F / (1 + F),   T = 1 - R,
 // with transmission straight through (the pane's lateral offset is ignored).
 
+float thinDielectricReflectance(const BsdfParams& p, float cos_theta) {
+  float f = fresnelDielectric(std::abs(cos_theta), std::max(p.ior, 1.0f));
+  return 2.0f * f / (1.0f + f);
+}
+
 std::optional<BsdfSample> sampleThinDielectric(const BsdfParams& p, const Vec3f& wo, float u_lobe) {
-  float f = fresnelDielectric(std::abs(wo.z()), std::max(p.ior, 1.0f));
-  float r = 2.0f * f / (1.0f + f);
+  const float r = thinDielectricReflectance(p, wo.z());
   if (u_lobe < r) return deltaSample(Vec3f(-wo.x(), -wo.y(), wo.z()), p.specular_tint, r, false);
   return deltaSample(-wo, p.transmittance, 1.0f - r, true);
 }
@@ -363,6 +367,10 @@ BsdfParams makeDielectric(float ior, float alpha, const Vec3f& transmittance,
   p.transmittance = clamp01(transmittance);
   p.specular_tint = clamp01(specular_tint);
   return p;
+}
+
+Vec3f thinDielectricTransmission(const BsdfParams& p, float cos_theta) {
+  return p.transmittance * (1.0f - thinDielectricReflectance(p, cos_theta));
 }
 
 BsdfParams makeThinDielectric(float ior, const Vec3f& transmittance) {

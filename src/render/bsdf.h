@@ -159,6 +159,9 @@ BsdfParams makeDielectric(float ior = 1.5f, float alpha = 0.0f,
                           const Vec3f& specular_tint = Vec3f::Ones());
 /// Thin pane (window glass): always smooth; transmission goes straight through.
 BsdfParams makeThinDielectric(float ior = 1.5f, const Vec3f& transmittance = Vec3f::Ones());
+/// The straight-through transmission of a thin pane at |cos theta| (its delta lobe's weight:
+/// transmittance x (1 - 2F / (1 + F))). Shadow rays pass panes with this factor.
+Vec3f thinDielectricTransmission(const BsdfParams& p, float cos_theta);
 /// Diffuse reflectance + diffuse transmittance; scaled down so that their sum is <= 1 per
 /// channel.
 BsdfParams makeTranslucent(const Vec3f& reflectance, const Vec3f& transmittance);

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -393,6 +394,44 @@ void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
                      "must be in (0, 1], got " + std::to_string(o.albedo_epsilon));
 }
 
+/// Step 0 (before filtering): a pixel whose demodulated luminance is more than kFireflyRatio
+/// times that of every one of its (at least 5) valid 8-neighbours is an isolated outlier, i.e. one
+/// sample that found a small, bright light path (a lamp seen through its shade, a caustic). The
+/// à-trous filter would spread it into a blotch, so it takes the colour of its neighbour of
+/// median luminance instead. Real features are never a single pixel brighter than all around
+/// it by that much in irradiance (texture is divided out, directly seen lights are not in the
+/// signal). Reads `in`, writes a copy: independent of the order of pixels and threads.
+constexpr float kFireflyRatio = 4.f;
+
+void rejectFireflies(const Guide& g, Signal& a) {
+  const Signal in = a;
+  forEachRow(g.height, [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * g.width + x;
+      if (g.valid[i] == 0.f) continue;
+      std::array<std::pair<float, size_t>, 8> nb;
+      int n = 0;
+      float brightest = 0.f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if ((dx == 0 && dy == 0) || xx < 0 || yy < 0 || xx >= g.width || yy >= g.height) continue;
+          const size_t j = static_cast<size_t>(yy) * g.width + xx;
+          if (g.valid[j] == 0.f) continue;
+          nb[n++] = {in.lum[j], j};
+          brightest = std::max(brightest, in.lum[j]);
+        }
+      if (n < 5 || !(in.lum[i] > kFireflyRatio * brightest + 1e-6f)) continue;
+      std::nth_element(nb.begin(), nb.begin() + n / 2, nb.begin() + n);
+      const size_t m = nb[n / 2].second;
+      a.r[i] = in.r[m];
+      a.g[i] = in.g[m];
+      a.b[i] = in.b[m];
+      a.lum[i] = in.lum[m];
+    }
+  });
+}
+
 ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
                const ImageF* variance, const DenoiseOptions& opt) {
   INET_CHECK_MSG(rgb.channels == 3, "denoise: rgb must have 3 channels");
@@ -409,6 +448,7 @@ ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, co
   const Guide g = buildGuide(rgb, albedo, normal, depth, opt);
   Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
   if (!variance) estimateVariance(g, a, opt);
+  rejectFireflies(g, a);
   Signal b(g.size());
   for (int it = 0; it < opt.iterations; ++it) {
     atrousLevel(g, a, b, 1 << it, opt);

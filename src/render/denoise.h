@@ -8,6 +8,8 @@
 // and variance propagation). Only the spatial part of SVGF is used: we filter single frames.
 //
 // Pipeline (docs/denoise.md has the why and the measured speed):
+//  0. (after 1 and 2) Fireflies: a pixel more than 4x brighter in demodulated luminance than
+//     each of its 8 neighbours takes the colour of the neighbour of median luminance.
 //  1. Demodulate: E_c = rgb_c / max(albedo_c, eps), so the filter sees irradiance, which is
 //     smooth across texture edges; the result is remodulated by the same max(albedo_c, eps).
 //  2. Noise level: sigma_E(p), the standard deviation of the luminance of E at p. From the

@@ -115,6 +115,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     rtcCommitScene(scene_);
   }
   checkDevice(device_, "scene build");
+  for (const ObjectShading& s : objects_) has_panes_ = has_panes_ || s.bsdf.type == BsdfType::ThinDielectric;
   buildLights(scene);
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -92,6 +92,8 @@ class EmbreeScene {
   /// True when some object moves (Object::motion). Every object is then an instance, so that a
   /// new exposure window only rebuilds the top level.
   bool hasMotion() const { return !moving_.empty(); }
+  /// True when some object is a thin pane (ThinDielectric): shadow rays must look through them.
+  bool hasPanes() const { return has_panes_; }
   /// Places moving objects for an exposure window starting at scene time `open_ns` and lasting
   /// `span_ns` (0: an instant). Rays carry time = (t - open) / span in [0, 1]; Embree
   /// interpolates each moving instance between kMotionSteps transforms spread over the window.
@@ -120,6 +122,7 @@ class EmbreeScene {
   std::vector<RTCScene> mesh_scenes_;  ///< per mesh, for instanced meshes (nullptr otherwise)
   std::vector<int> geom_to_object_;
   std::vector<ObjectShading> objects_;
+  bool has_panes_ = false;
   std::vector<std::unique_ptr<MeshAttributes>> attributes_;  ///< per mesh, or null
   TextureCache textures_;
   struct MovingObject {

@@ -239,6 +239,25 @@ TEST(Denoise, ConstantImageStaysConstant) {
   }
 }
 
+// A single pixel 100x brighter than a flat surround (one sample that found a lamp through its
+// shade) must not become a blotch; a 2x2 bright patch is a feature and stays brighter.
+TEST(Denoise, IsolatedFireflyGoesABrightPatchStays) {
+  const int w = 48, h = 32;
+  ImageF rgb(w, h, 3, 0.2f), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1, 2.f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) normal.at(x, y, 2) = -1.f;
+  for (int k = 0; k < 3; ++k) rgb.at(10, 10, k) = 20.f;  // the firefly
+  for (int y = 20; y < 22; ++y)
+    for (int x = 30; x < 32; ++x)
+      for (int k = 0; k < 3; ++k) rgb.at(x, y, k) = 2.f;  // a small bright feature
+  ImageF out = denoise(rgb, albedo, normal, depth, nullptr, DenoiseOptions{});
+  double around_firefly = 0;
+  for (int y = 5; y < 16; ++y)
+    for (int x = 5; x < 16; ++x) around_firefly = std::max<double>(around_firefly, out.at(x, y, 1));
+  EXPECT_LT(around_firefly, 0.25) << "the firefly neither stays nor spreads";
+  EXPECT_GT(out.at(30, 20, 1), 0.5f) << "the 2x2 patch is kept";
+}
+
 TEST(Denoise, SameBytesForOneAndTwoThreadsAt640x480) {
   SyntheticFrame f = makeFrame(640, 480, 4);
   auto run = [&](int threads, const ImageF* var) {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/color.h"
+#include "render/fresnel.h"
 #include "render/renderer.h"
 #include "render/sky.h"
 #include "scene/primitives.h"
@@ -188,6 +189,77 @@ TEST(Lights, PreethamSkyOverAFloor) {
   }
   const double expected = kAlbedo / M_PI * E_green;
   EXPECT_NEAR(floorRadiance(s, 0, 0, 256), expected, 0.01 * expected);
+}
+
+}  // namespace
+}  // namespace inet
+
+namespace inet {
+namespace {
+
+/// floorScene() under a horizontal window pane (ior 1.5) at z = 1.5, above the camera.
+Scene paneOverFloor() {
+  Scene s = floorScene();
+  Material glass;
+  glass.id = "pane";
+  glass.type = MaterialType::ThinDielectric;
+  glass.ior = 1.5f;
+  s.materials.push_back(glass);
+  Mat4 T = Mat4::Identity();
+  T.diagonal() << 200, 200, 1, 1;
+  T(2, 3) = 1.5;
+  s.objects.push_back(Object::make("pane", 0, 1, T, 9, 2));
+  return s;
+}
+
+/// Expected straight-through transmission of the pane at incidence cosine c: 1 - 2F/(1+F).
+double paneTransmission(double c) {
+  const double f = fresnelDielectric(static_cast<float>(c), 1.5f);
+  return 1.0 - 2.0 * f / (1.0 + f);
+}
+
+// Sunlight through a window: next-event estimation looks through the pane, so the floor gets
+// E sin(el) T(el) at once (without it, only BSDF samples that happen to hit the 0.53-degree sun
+// would carry the light: a firefly here and there, and almost always zero at 16 spp).
+TEST(Lights, SunThroughAWindowPane) {
+  Scene s = paneOverFloor();
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::Sun;
+  const double elevation = 50.0 * M_PI / 180.0;
+  sun.direction = -Vec3(std::cos(elevation), 0, std::sin(elevation));
+  sun.intensity = 3.f;
+  s.lights = {sun};
+  const double expected =
+      kAlbedo / M_PI * 3.0 * std::sin(elevation) * paneTransmission(std::sin(elevation));
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 16), expected, 0.01 * expected) << "16 spp suffice";
+  EXPECT_NEAR(floorRadiance(s, 0, 0, 1024), expected, 0.003 * expected);
+}
+
+// An area light behind a pane: light sampling (through the pane) and BSDF sampling (through it
+// as a pass, not a bounce) must combine to the same value as without the pane times its
+// transmission; a small emitter straight above keeps the incidence near normal.
+TEST(Lights, AreaLightThroughAPaneMatchesMisWithoutIt) {
+  auto withLamp = [](Scene s) {
+    Mesh quad = makePrimitive("quad", {}, "t", "quad");
+    quad.id = "lamp_quad";
+    s.meshes.push_back(quad);
+    Material lamp;
+    lamp.id = "lamp";
+    lamp.emission = Vec3f::Constant(50.f);
+    s.materials.push_back(lamp);
+    Mat4 T = Mat4::Identity();
+    T.diagonal() << 0.2, -0.2, -1, 1;  // turned over (x stays, y and z flip): faces down
+    T(2, 3) = 3.0;
+    s.objects.push_back(Object::make("lamp", static_cast<int>(s.meshes.size()) - 1,
+                                     static_cast<int>(s.materials.size()) - 1, T, 39, 9));
+    return s;
+  };
+  const double open = floorRadiance(withLamp(floorScene()), 0, 0, 4096);
+  const double behind = floorRadiance(withLamp(paneOverFloor()), 0, 0, 4096);
+  // the lamp subtends ~0.4 degrees from the floor point: T at normal incidence
+  EXPECT_GT(open, 0.0);
+  EXPECT_NEAR(behind, open * paneTransmission(1.0), 0.01 * open);
 }
 
 }  // namespace
