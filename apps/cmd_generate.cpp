@@ -105,9 +105,9 @@ CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
     out.frames = std::move(traj.frames);
     out.path = std::move(traj.dense);
     out.description = fmt::format("{} random trajectory, seed {}, v_mult {:.4f}, w_mult {:.4f}, "
-                                  "clearance {} m",
+                                  "clearance {} m, style {}",
                                   motionTypeName(type), a.seed, traj.v_mult, traj.w_mult,
-                                  opt.clearance);
+                                  opt.clearance, a.motion.style);
     return out;
   }
   out.frames = readTrajectory(a.trajectory);

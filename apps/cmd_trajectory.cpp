@@ -24,7 +24,6 @@ struct TrajectoryGenerateArgs {
   int frames = 250;
   double fps = 25.0;
   uint64_t seed = 0;
-  std::string style = "none";
   std::string format;
   std::string out;
   std::string dense;
@@ -121,11 +120,6 @@ void plotTrajectory(const fs::path& png, const Trajectory& traj, const Scene* sc
 
 void runGenerate(const TrajectoryGenerateArgs& a) {
   const MotionType type = parseMotionType(a.type, "--type");
-  if (a.style != "none")
-    throw InputError("", "--style",
-                     a.style == "learned"
-                         ? "the learned style model is not trained yet; use --style none"
-                         : "must be none or learned");
   if (a.frames < 1 || a.frames > 10'000'000) throw InputError("", "--frames", "must be >= 1");
   if (!(a.fps > 0 && a.fps <= 10000)) throw InputError("", "--fps", "must be in (0, 10000]");
   const TrajectoryFormat fmt = formatFor(a.format, a.out, "--out");
@@ -140,8 +134,9 @@ void runGenerate(const TrajectoryGenerateArgs& a) {
                     a.format_options);
   if (!a.plot.empty())
     plotTrajectory(a.plot, traj.frames, &scene, &space,
-                   fmt::format("{} trajectory, v_mult {:.2f}, w_mult {:.2f}, seed {}",
-                               motionTypeName(type), traj.v_mult, traj.w_mult, a.seed));
+                   fmt::format("{}{} trajectory, v_mult {:.2f}, w_mult {:.2f}, seed {}",
+                               motionTypeName(type), opt.learned_style ? " styled" : "",
+                               traj.v_mult, traj.w_mult, a.seed));
   std::printf("wrote %zu poses (%s, v_mult %.2f, w_mult %.2f) to %s\n", traj.frames.size(),
               motionTypeName(type), traj.v_mult, traj.w_mult, a.out.c_str());
 }
@@ -166,7 +161,6 @@ void registerTrajectory(CLI::App& app) {
   gen->add_option("--frames", a->frames, "number of poses (default 250)");
   gen->add_option("--fps", a->fps, "pose rate (default 25)");
   gen->add_option("--seed", a->seed, "random seed; same seed, same trajectory (default 0)");
-  gen->add_option("--style", a->style, "none (default) or learned (hand-held jitter model)");
   gen->add_option("--format", a->format,
                   "tum, euroc, icl, slambench or scenenet (default: from --out's extension)");
   gen->add_option("--icl-fps", a->format_options.icl_fps,
@@ -178,6 +172,7 @@ void registerTrajectory(CLI::App& app) {
   gen->callback([a] { runGenerate(*a); });
 
   addTrajectoryConvertCommand(trajectory);
+  addTrainStyleCommand(trajectory);
 
   auto* show = trajectory->add_subcommand(
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");

@@ -176,6 +176,9 @@ void MotionArgs::addTo(CLI::App& cmd) {
                  "least distance from the camera to any geometry, m (default 0.25)");
   cmd.add_option("--min-height", min_height, "lowest camera height, m (default 1)");
   cmd.add_option("--max-height", max_height, "highest camera height, m (default 2)");
+  cmd.add_option("--style", style,
+                 "none (default: the smooth base motion) or learned: hand-held jitter from the "
+                 "WaveNet style model trained on real camera paths (docs/style.md)");
 }
 
 RandomTrajectoryOptions MotionArgs::options(MotionType type, uint64_t seed, int frames,
@@ -187,7 +190,10 @@ RandomTrajectoryOptions MotionArgs::options(MotionType type, uint64_t seed, int 
   if (!(clearance >= 0 && clearance <= 5)) throw InputError("", "--clearance", "must be in 0..5");
   if (!(min_height >= 0 && min_height < max_height && max_height <= 100))
     throw InputError("", "--max-height", "need 0 <= --min-height < --max-height <= 100");
+  if (style != "none" && style != "learned")
+    throw InputError("", "--style", "must be none or learned, not '" + style + "'");
   RandomTrajectoryOptions o;
+  o.learned_style = style == "learned";
   o.type = type;
   o.seed = seed;
   o.frames = frames;

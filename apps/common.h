@@ -67,12 +67,14 @@ struct LensArgs {
 };
 
 /// Options of the random trajectories (trajectory/random_trajectory.h) that `generate` and
-/// `trajectory generate` share: --v-mult, --w-mult, --clearance, --min-height, --max-height.
+/// `trajectory generate` share: --v-mult, --w-mult, --clearance, --min-height, --max-height,
+/// --style.
 struct MotionArgs {
   double v_mult = 0.0;  ///< 0 = drawn per trajectory
   double w_mult = 0.0;
   double clearance = 0.25;
   double min_height = 1.0, max_height = 2.0;
+  std::string style = "none";  ///< none | learned
   void addTo(CLI::App& cmd);
   /// Options for a trajectory of `type` with these settings (InputError naming the flag).
   RandomTrajectoryOptions options(MotionType type, uint64_t seed, int frames, double fps) const;
@@ -106,5 +108,6 @@ void registerTrajectory(CLI::App& app);
 void registerEval(CLI::App& app);
 void registerImu(CLI::App& app);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
+void addTrainStyleCommand(CLI::App* trajectory_cmd);
 
 }  // namespace inet::app

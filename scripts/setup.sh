@@ -9,6 +9,7 @@ PACKAGES=(
   nlohmann-json3-dev libpugixml-dev libcli11-dev libfmt-dev libspdlog-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcairo2-dev
+  libtorch-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "trajectory/style_model.h"
 
 namespace inet {
 
@@ -18,6 +19,7 @@ constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
 constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
 constexpr double kWallBand = 0.4;   // distance beyond the clearance where walls start to push
 constexpr double kMaxYawRate = 1.2;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
+constexpr double kLeanOmega = 2.0;  // natural frequency of the up vector's lean (rad/s)
 constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
 
 /// Standard normal from two uniforms (Box-Muller; one value per call keeps draws simple).
@@ -27,22 +29,39 @@ double gaussian(CounterRng& rng) {
 }
 
 /// A 3-D Ornstein-Uhlenbeck process with correlation time tau and stationary standard
-/// deviation sigma per axis, stepped exactly (not Euler), so its statistics do not depend on dt.
+/// deviation sigma per axis, stepped exactly (not Euler), so its statistics do not depend on dt,
+/// then low-passed (first order, time constant kForceSmoothing) into `value`. An OU process is
+/// continuous but has a white-noise derivative; a force like that gives a body a jerk of white
+/// noise, i.e. broadband acceleration up to the simulation rate. Smoothed, the base motion is
+/// smooth (acceleration falls as 1/f^2 above ~0.5 Hz), as the paper's base trajectories are
+/// meant to be: realistic hand-held jitter is the style model's job.
+constexpr double kForceSmoothing = 0.3;  // s
+constexpr double kGuideSmoothing = 0.1;  // s: low-pass of the wall, steering and height forces
+
 struct OuProcess {
+  Vec3 ou = Vec3::Zero();
   Vec3 value = Vec3::Zero();
   Vec3 sigma = Vec3::Zero();
   double tau = 1.0;
   void start(CounterRng& rng) {
-    for (int c = 0; c < 3; ++c) value[c] = sigma[c] * gaussian(rng);
+    for (int c = 0; c < 3; ++c) ou[c] = sigma[c] * gaussian(rng);
+    value = ou;
   }
   void step(CounterRng& rng, double dt) {
     const double a = std::exp(-dt / tau), b = std::sqrt(1.0 - a * a);
-    for (int c = 0; c < 3; ++c) value[c] = a * value[c] + b * sigma[c] * gaussian(rng);
+    for (int c = 0; c < 3; ++c) ou[c] = a * ou[c] + b * sigma[c] * gaussian(rng);
+    value += (ou - value) * (dt / kForceSmoothing);
   }
 };
 
-/// RMS speed per axis of a body with drag k driven by an OU force (sigma = 1, tau).
-double ouSpeedFactor(double tau, double k = kDrag) { return std::sqrt(tau / (k * (1.0 + k * tau))); }
+/// RMS speed per axis of a body with drag k driven by a smoothed OU force of unit sigma: the
+/// variance at the output of three first-order low-passes with poles a = 1/tau, b =
+/// 1/kForceSmoothing, c = k driven by white noise of intensity 2 a, from
+///   integral dw / ((w^2+a^2)(w^2+b^2)(w^2+c^2)) = pi (a+b+c) / (abc (a+b)(b+c)(c+a)).
+double ouSpeedFactor(double tau, double k = kDrag) {
+  const double a = 1.0 / tau, b = 1.0 / kForceSmoothing, c = k;
+  return std::sqrt(b * (a + b + c) / (c * (a + b) * (b + c) * (c + a)));
+}
 
 struct State {
   Vec3 cam, target, up;
@@ -127,7 +146,10 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   OuProcess target_force;
   target_force.tau = 1.0;
   target_force.sigma = Vec3(target_sigma, target_sigma, 0.5 * target_sigma);
-  OuProcess tilt;  // x, y: lean of the up vector (radians); z unused
+  // the up vector's lean (x, y, radians) follows an OU process through a critically damped
+  // spring (2 rad/s), so it is smooth (C1): an OU process itself has a white-noise derivative,
+  // which would put ~1 rad/s of jitter into the angular velocity
+  OuProcess tilt;
   tilt.tau = 2.0;
   tilt.sigma = Vec3::Constant(opt.max_tilt_deg * M_PI / 180.0 / 2.5);
   tilt.sigma.z() = 0;
@@ -135,9 +157,11 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   target_force.start(rng);
   tilt.start(rng);
   const double max_tilt = opt.max_tilt_deg * M_PI / 180.0;
+  Vec3 lean(tilt.value.x(), tilt.value.y(), 0), lean_rate = Vec3::Zero();
+  if (lean.norm() > max_tilt) lean *= max_tilt / lean.norm();
   const double kp = std::pow(4.0 * out.w_mult, 2), kd = 2.0 * std::sqrt(kp);  // look-forward yaw
 
-  Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero();
+  Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero(), guide_smooth = Vec3::Zero();
   double yaw = std::atan2(s.target.y() - s.cam.y(), s.target.x() - s.cam.x()), yaw_rate = 0.0;
   Vec3 heading(std::cos(yaw), std::sin(yaw), 0);
   double pitch = -0.15;
@@ -152,11 +176,14 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     Vec3 vh(v_cam.x(), v_cam.y(), 0);
     if (vh.norm() > 0.05) heading = vh.normalized();
     if (forward && f.dot(heading) < 0) f -= 2.0 * f.dot(heading) * heading;
-    Vec3 a = f - cam_drag * v_cam;
+    // guidance: walls push, look-forward steers, heights are kept; these forces change
+    // abruptly (the distance field's gradient is piecewise constant, the steering side flips),
+    // so they act through a 0.1 s low-pass, keeping the base motion smooth
+    Vec3 guide = Vec3::Zero();
     const double d = space.lowerBound(s.cam);
     if (d < clear + kWallBand) {
       Vec3 g = space.gradient(s.cam);
-      if (g.norm() > 1e-9) a += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
+      if (g.norm() > 1e-9) guide += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
     }
     if (forward && vh.norm() > 0.05) {
       // a walker steers round what is ahead instead of bouncing off it: look ahead along the
@@ -170,12 +197,17 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
         const double dl = space.lowerBound(s.cam + look * (c * heading + sn * left));
         const double dr = space.lowerBound(s.cam + look * (c * heading - sn * left));
         const double urgency = std::clamp((want - ahead) / want, 0.0, 1.0);
-        a += urgency * (speed * speed / 0.4) * (dl >= dr ? left : Vec3(-left));
-        a -= urgency * 1.0 * vh;
+        guide += urgency * (speed * speed / 0.4) * (dl >= dr ? left : Vec3(-left));
+        guide -= urgency * 1.0 * vh;
       }
     }
     const double mid = 0.5 * (h_lo + h_hi);
-    a.z() += -1.0 * (s.cam.z() - mid);  // weak pull to mid-height, so heights vary but stay
+    guide.z() += -1.0 * (s.cam.z() - mid);  // weak pull to mid-height, so heights vary but stay
+    const double margin = 0.15;             // and a firm one near the height limits
+    if (s.cam.z() < h_lo + margin) guide.z() += 30.0 * (h_lo + margin - s.cam.z());
+    if (s.cam.z() > h_hi - margin) guide.z() -= 30.0 * (s.cam.z() - (h_hi - margin));
+    guide_smooth += (guide - guide_smooth) * (kSimDt / kGuideSmoothing);
+    const Vec3 a = f - cam_drag * v_cam + guide_smooth;
     v_cam += a * kSimDt;
     Vec3 next = s.cam + v_cam * kSimDt;
     if (next.z() < h_lo || next.z() > h_hi) {
@@ -238,8 +270,14 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
         v_target.z() = std::min(0.0, v_target.z());
       }
     }
-    Vec3 lean(tilt.value.x(), tilt.value.y(), 0);
-    if (lean.norm() > max_tilt) lean *= max_tilt / lean.norm();
+    lean_rate += (kLeanOmega * kLeanOmega * (Vec3(tilt.value.x(), tilt.value.y(), 0) - lean) -
+                  2.0 * kLeanOmega * lean_rate) *
+                 kSimDt;
+    lean += lean_rate * kSimDt;
+    if (lean.norm() > max_tilt) {  // rarely reached (sigma is max / 2.5): stop at the limit
+      lean *= max_tilt / lean.norm();
+      lean_rate -= lean_rate.dot(lean.normalized()) * lean.normalized();
+    }
     s.up = Vec3(std::tan(lean.x()), std::tan(lean.y()), 1.0).normalized();
   };
 
@@ -276,6 +314,13 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     const TimeNs t = static_cast<TimeNs>(std::llround(i * 1e9 / opt.dense_rate));
     if (t > last_ns) break;
     out.dense.poses.push_back(poseAt(t));
+  }
+  if (opt.learned_style) {
+    out.dense = applyStyle(out.dense, builtinStyleModel(), opt.seed, [&](const Vec3& p) {
+      return p.z() >= h_lo && p.z() <= h_hi && space.hasClearance(p, clear);
+    });
+    for (auto* poses : {&out.frames, &out.shutter_close})
+      for (TimedPose& p : poses->poses) p.T_world_camera = out.dense.poseAt(p.t_ns);
   }
   return out;
 }

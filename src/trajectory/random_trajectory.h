@@ -51,13 +51,16 @@ struct RandomTrajectoryOptions {
   double max_tilt_deg = 5.0;                  ///< up vector off gravity
   double clearance = 0.25;                    ///< camera to geometry (m)
   double dense_rate = 200.0;  ///< rate of the dense pose samples kept for sensors (Hz)
+  /// Hand-held motion from the learned style model (style_model.h, builtinStyleModel()) on top
+  /// of the base path, kept at the clearance; frames are then taken from the styled dense path.
+  bool learned_style = false;
 };
 
 struct RandomTrajectory {
   Trajectory frames;          ///< one pose per frame, at shutter open
   Trajectory shutter_close;   ///< one pose per frame, at shutter close
   Trajectory dense;           ///< poses at dense_rate over the whole span (for splines, IMU)
-  std::vector<double> tilt_deg;  ///< per frame: the up vector's angle to gravity
+  std::vector<double> tilt_deg;  ///< per frame: the base up vector's angle to gravity
   double v_mult = 1.0, w_mult = 1.0;  ///< the multipliers used
 };
 

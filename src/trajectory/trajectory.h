@@ -20,6 +20,9 @@ struct Trajectory {
   /// Linear velocity of the camera centre in the world frame at pose k (central difference,
   /// one-sided at the ends; zero for a single pose), m/s.
   Vec3 velocityWorld(size_t k) const;
+  /// The pose at t_ns: linear in position, slerp in rotation between the two neighbouring poses
+  /// (held at the ends). Needs a non-empty trajectory.
+  Pose poseAt(TimeNs t_ns) const;
 };
 
 /// Reads a TUM trajectory (`timestamp tx ty tz qx qy qz qw`, seconds, '#' comments; commas and
