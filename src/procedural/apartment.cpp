@@ -25,6 +25,7 @@ constexpr double kDoorZone = 1.0;      ///< floor kept clear in front of a doorw
 constexpr double kMaxOccupied = 0.35;  ///< share of a room's floor furniture may cover
 constexpr double kRobotRadius = 0.25;  ///< clearance kept for cameras (reachableRooms)
 constexpr double kGridCell = 0.1;
+constexpr double kInWallOverlap = 0.005;  ///< doors and windows reach this far into the wall
 
 bool known(const std::string& category) {
   static const std::set<std::string> names(furnitureCategories().begin(),
@@ -478,22 +479,24 @@ class Builder {
         }
       }
     }
-    // front door (closed) and windows, fitted to their openings
+    // front door (closed) and windows, reaching 5 mm into the wall round their openings: a gap
+    // of even 1 cm (or a crack between coincident faces) lets daylight leak in and shows the
+    // void outside as unlabelled pixels
     for (const PlanDoor& d : plan.doors) {
       if (d.b >= 0 || !known("door")) continue;
       FurnitureSizeHint hint;
-      hint.width = d.to - d.from - 0.02;
-      hint.height = d.height - 0.01;
+      hint.width = d.to - d.from + 2 * kInWallOverlap;
+      hint.height = d.height + kInWallOverlap;
       FurnitureModel m = make("door", hint);
       inWall(m, d.vertical, d.line, 0.5 * (d.from + d.to), 0.0, d.a);
     }
     for (const PlanWindow& w : plan.windows) {
       if (!known("window")) continue;
       FurnitureSizeHint hint;
-      hint.width = w.to - w.from - 0.02;
-      hint.height = w.top - w.sill - 0.02;
+      hint.width = w.to - w.from + 2 * kInWallOverlap;
+      hint.height = w.top - w.sill + 2 * kInWallOverlap;
       FurnitureModel m = make("window", hint);
-      inWall(m, w.vertical, w.line, 0.5 * (w.from + w.to), w.sill + 0.01, w.room);
+      inWall(m, w.vertical, w.line, 0.5 * (w.from + w.to), w.sill - kInWallOverlap, w.room);
     }
   }
 

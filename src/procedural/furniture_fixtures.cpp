@@ -131,6 +131,16 @@ void door(Builder& b) {
   b.box("jamb_right", frame, {lw / 2 + g, -fd / 2, 0}, {lw / 2 + g + fw, fd / 2, lh + g + fw});
   b.box("head", frame, {-lw / 2 - g, -fd / 2, lh + g}, {lw / 2 + g, fd / 2, lh + g + fw});
   b.box("leaf", leaf, {-lw / 2, -t / 2, 0.01}, {lw / 2, t / 2, lh});
+  // door stops behind the leaf, overlapping its edges by 1 cm: the 3 mm gap round the leaf is
+  // not see-through (a front door's gap would show the void outside)
+  // (parts meet without overlapping: the head stop between the side stops, these above the
+  // threshold)
+  const double sy0 = t / 2, sy1 = t / 2 + 0.012, so = 0.01, th = 0.012;
+  b.box("stop_left", frame, {-lw / 2 - g, sy0, th}, {-lw / 2 + so, sy1, lh + g});
+  b.box("stop_right", frame, {lw / 2 - so, sy0, th}, {lw / 2 + g, sy1, lh + g});
+  b.box("stop_head", frame, {-lw / 2 + so, sy0, lh - so}, {lw / 2 - so, sy1, lh + g});
+  // and a threshold under it, closing the 1 cm gap at the floor
+  b.box("threshold", frame, {-lw / 2 - g, -fd / 2, 0}, {lw / 2 + g, fd / 2, th});
   const double xh = lw / 2 - 0.065, zh = b.uniform(0.95, 1.05);
   for (int s : {-1, 1}) {
     const std::string side = s < 0 ? "_front" : "_back";

@@ -18,7 +18,7 @@ constexpr double kDrag = 1.0;       // k: velocity decays as exp(-k t) without f
 constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
 constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
 constexpr double kWallBand = 0.4;   // distance beyond the clearance where walls start to push
-constexpr double kMaxYawRate = 1.2;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
+constexpr double kMaxYawRate = 2.0;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
 constexpr double kLeanOmega = 2.0;  // natural frequency of the up vector's lean (rad/s)
 constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
 
@@ -239,7 +239,7 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       const double want = std::atan2(heading.y(), heading.x());
       const double err = std::remainder(want - yaw, 2.0 * M_PI);
       yaw_rate += (kp * err - kd * yaw_rate + 0.5 * target_force.value.x()) * kSimDt;
-      // a person turns at most ~1.2 rad/s at w_mult 1 (a bounce off a wall would otherwise
+      // a person turns at most ~2 rad/s at w_mult 1 (a bounce off a wall would otherwise
       // swing the view around at over 9 rad/s)
       yaw_rate = std::clamp(yaw_rate, -kMaxYawRate * out.w_mult, kMaxYawRate * out.w_mult);
       yaw += yaw_rate * kSimDt;
