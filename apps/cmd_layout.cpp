@@ -185,6 +185,9 @@ void registerLayout(CLI::App& app) {
       "(--from 3dfront, furniture from a 3D-FUTURE folder or as labelled boxes), ready for "
       "lights and motion");
   auto import_args = std::make_shared<SceneArgs>();
+  import->add_option("FILE", import_args->path,
+                     "the scene to import (the same as --scene): .json 3D-FRONT house, or any "
+                     "mesh file Assimp reads (.obj .gltf .glb .ply .fbx ...)");
   import_args->addTo(*import);
   auto out = std::make_shared<std::string>();
   auto from = std::make_shared<std::string>();
@@ -199,24 +202,24 @@ void registerLayout(CLI::App& app) {
                      "furniture becomes labelled boxes");
   import->add_option("--out", *out, "layout.json to write (atomically)")->required();
   import->callback([import_args, out, from, models] {
-    if (import_args->isDefault()) throw InputError("", "--scene", "name the file to import");
-  const std::string ext = std::filesystem::path(import_args->path).extension().string();
-  const std::string kind = !from->empty() ? *from : (ext == ".json" ? "3dfront" : "obj");
-  if (kind == "3dfront") {
-    Front3dOptions opt;
-    opt.models_dir = *models;
-    opt.label_map = import_args->labels;
-    Front3dReport report;
-    Scene s = importFront3d(import_args->path, opt, &report);
-    const std::string warn = report.summary();
-    if (!warn.empty())
-      std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(), warn.c_str());
-    importScene(std::move(s), *out);
-  } else {
-    if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
-    importScene(import_args->loadScene(), *out);
-  }
-});
-}  // namespace inet::app
+    if (import_args->isDefault()) throw InputError("", "FILE", "name the file to import");
+    const std::string ext = std::filesystem::path(import_args->path).extension().string();
+    const std::string kind = !from->empty() ? *from : (ext == ".json" ? "3dfront" : "obj");
+    if (kind == "3dfront") {
+      Front3dOptions opt;
+      opt.models_dir = *models;
+      opt.label_map = import_args->labels;
+      Front3dReport report;
+      Scene s = importFront3d(import_args->path, opt, &report);
+      const std::string warn = report.summary();
+      if (!warn.empty())
+        std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(), warn.c_str());
+      importScene(std::move(s), *out);
+    } else {
+      if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
+      importScene(import_args->loadScene(), *out);
+    }
+  });
+}
 
 }  // namespace inet::app

@@ -1,5 +1,9 @@
 // interiornet trajectory generate | convert | show: camera paths without rendering.
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -103,18 +107,24 @@ void plotTrajectory(const fs::path& png, const Trajectory& traj, const Scene* sc
   top.push_back(std::move(view));
   top.push_back(std::move(start));
 
-  LinePlot plan{{title, "x (m)", "y (m)"}, std::move(top)};
+  auto panel = [](std::string panel_title, std::string x, std::string y, int width) {
+    LinePlot p;
+    p.spec.title = std::move(panel_title);
+    p.spec.x_label = std::move(x);
+    p.spec.y_label = std::move(y);
+    p.spec.width = width;
+    p.spec.height = 700;
+    return p;
+  };
+  LinePlot plan = panel(title, "x (m)", "y (m)", 900);
   plan.spec.equal_aspect = true;
-  plan.spec.width = 900;
-  plan.spec.height = 700;
-  LinePlot h{{"height", "time (s)", "z (m)"}, {Series{"", t, height}}};
-  h.spec.width = 450;
-  h.spec.height = 700;
+  plan.series = std::move(top);
+  LinePlot h = panel("height", "time (s)", "z (m)", 450);
   h.spec.legend = false;
-  LinePlot v{{"speed", "time (s)", "m/s"}, {Series{"", t, speed}}};
-  v.spec.width = 450;
-  v.spec.height = 700;
+  h.series.push_back(Series{"", t, height, {}, Series::Style::Line});
+  LinePlot v = panel("speed", "time (s)", "m/s", 450);
   v.spec.legend = false;
+  v.series.push_back(Series{"", t, speed, {}, Series::Style::Line});
   writeLinePlotRowPng(png, {plan, h, v});
 }
 
@@ -139,6 +149,21 @@ void runGenerate(const TrajectoryGenerateArgs& a) {
                                traj.v_mult, traj.w_mult, a.seed));
   std::printf("wrote %zu poses (%s, v_mult %.2f, w_mult %.2f) to %s\n", traj.frames.size(),
               motionTypeName(type), traj.v_mult, traj.w_mult, a.out.c_str());
+}
+
+/// Replaces this process with interiornet-train-style from this binary's folder.
+[[noreturn]] void execTrainStyle(const std::vector<std::string>& args) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path tool = (ec ? fs::path(".") : self.parent_path()) / "interiornet-train-style";
+  std::vector<std::string> owned = {tool.string(), "train-style"};
+  owned.insert(owned.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : owned) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  ::execv(tool.c_str(), argv.data());
+  throw InputError(tool.string(), "", fmt::format("cannot run it: {}", std::strerror(errno)));
 }
 
 }  // namespace
@@ -172,7 +197,16 @@ void registerTrajectory(CLI::App& app) {
   gen->callback([a] { runGenerate(*a); });
 
   addTrajectoryConvertCommand(trajectory);
-  addTrainStyleCommand(trajectory);
+
+  // train-style runs in interiornet-train-style (LibTorch), next to this binary: every argument
+  // after the subcommand, --help included, goes to it unparsed
+  auto* train = trajectory->add_subcommand(
+      "train-style",
+      "Train the learned hand-held style model with LibTorch (runs interiornet-train-style; "
+      "'interiornet trajectory train-style --help' lists its options)");
+  train->prefix_command();
+  train->set_help_flag();
+  train->callback([train] { execTrainStyle(train->remaining()); });
 
   auto* show = trajectory->add_subcommand(
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");

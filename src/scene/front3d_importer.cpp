@@ -290,7 +290,10 @@ Scene importFront3d(const std::string& path, const Front3dOptions& opt, Front3dR
         const json& b = f["bbox"][0].is_array() ? f["bbox"][0] : f["bbox"];
         fu.size = r.vec3(b, fld + ".bbox");
       } else if (f.contains("size")) {
-        fu.size = r.vec3(f["size"], fld + ".size");
+        // "size" lists width, depth, height (the shared house's bed: size 1.947 2.262 0.966,
+        // bbox 1.956 0.966 2.268): reorder to the model frame's x, y (up), z
+        const Vec3 s3 = r.vec3(f["size"], fld + ".size");
+        fu.size = Vec3(s3.x(), s3.z(), s3.y());
       }
       furniture[f["uid"].get<std::string>()] = fu;
     }

@@ -92,5 +92,19 @@ TEST(CliTrajectory, GenerateConvertShowAndScore) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.txt"));
 }
 
+// train-style runs in its own LibTorch executable; interiornet hands over every argument to it
+// (so interiornet itself starts without loading LibTorch)
+TEST(CliTrajectory, TrainStyleHandsOverToItsOwnExecutable) {
+  RunResult help = runInterinet("trajectory train-style --help");
+  EXPECT_EQ(help.exit_code, 0) << help.err;
+  EXPECT_NE(help.out.find("--holdout"), std::string::npos) << help.out;
+  RunResult bad = runInterinet("trajectory train-style --data /nonexistent/folder --out x.bin");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("/nonexistent/folder: --data"), std::string::npos) << bad.err;
+  RunResult version = runInterinet("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_LT(version.peak_rss_kb, 60000) << "interiornet does not load LibTorch";
+}
+
 }  // namespace
 }  // namespace inet::test

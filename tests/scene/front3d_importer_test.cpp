@@ -7,6 +7,10 @@
 
 #include <set>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
 #include "scene/layout_json.h"
 #include "scene/nyu40.h"
 #include "scene_test_util.h"
@@ -68,6 +72,61 @@ TEST(Front3d, SharedHouseImportsWithRoomsLabelsAndPlaceholders) {
   const std::string out = (dir.path() / "house.json").string();
   saveLayout(s, out);
   EXPECT_EQ(loadLayout(out).objects.size(), s.objects.size());
+}
+
+// With a 3D-FUTURE model folder, each piece's raw_model.obj replaces its box. Models made here
+// as boxes of each piece's bbox (y up, origin at the bottom centre, as 3D-FUTURE's) must land
+// exactly where the placeholder boxes do.
+TEST(Front3d, FutureModelsReplaceThePlaceholdersInPlace) {
+  if (!std::filesystem::exists(house()))
+    GTEST_SKIP() << "needs ../shared/data/scenes/3d_front (absent)";
+  TempDir dir;
+  const auto models = dir.path() / "3D-FUTURE-model";
+  Front3dReport boxes_report;
+  const Scene boxes = importFront3d(house(), {}, &boxes_report);
+  // write one model per placeholder's jid, from the house file's own bbox
+  const nlohmann::json j = nlohmann::json::parse(readTextFile(house()));
+  int written = 0;
+  for (const auto& f : j["furniture"]) {
+    if (!f.contains("jid") || !f.contains("bbox") || f["bbox"].empty()) continue;
+    const auto& b = f["bbox"][0].is_array() ? f["bbox"][0] : f["bbox"];
+    const double x = b[0].get<double>() / 2, y = b[1].get<double>(), z = b[2].get<double>() / 2;
+    std::string obj;
+    for (int c = 0; c < 8; ++c)
+      obj += fmt::format("v {} {} {}\n", c & 1 ? x : -x, c & 2 ? y : 0.0, c & 4 ? z : -z);
+    obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    const auto folder = models / f["jid"].get<std::string>();
+    std::filesystem::create_directories(folder);
+    writeTextAtomic(folder / "raw_model.obj", obj);
+    ++written;
+  }
+  ASSERT_GT(written, 10);
+  Front3dOptions opt;
+  opt.models_dir = models.string();
+  Front3dReport report;
+  const Scene real = importFront3d(house(), opt, &report);
+  EXPECT_EQ(report.placeholders, 0u) << "every piece found its model";
+  EXPECT_EQ(report.furniture, boxes_report.furniture);
+  // the same pieces in the same order: world bounds agree to 1e-5 m
+  auto worldBox = [](const Scene& s, const Object& o) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3f& p : s.meshes[o.mesh].positions)
+      box.extend((o.T_world_object * Eigen::Vector4d(p.x(), p.y(), p.z(), 1)).head<3>());
+    return box;
+  };
+  std::vector<const Object*> a, b;
+  for (const Object& o : boxes.objects)
+    if (o.part == "placeholder_box") a.push_back(&o);
+  for (const Object& o : real.objects)
+    if (o.mesh >= 0 && real.meshes[o.mesh].id.rfind("model_", 0) == 0) b.push_back(&o);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), 20u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    const auto ba = worldBox(boxes, *a[i]), bb = worldBox(real, *b[i]);
+    EXPECT_LT((ba.min() - bb.min()).norm(), 1e-5) << a[i]->name;
+    EXPECT_LT((ba.max() - bb.max()).norm(), 1e-5) << a[i]->name;
+    EXPECT_EQ(a[i]->nyu40, b[i]->nyu40);
+  }
 }
 
 TEST(Front3d, MalformedFilesNameTheField) {
