@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -20,6 +21,8 @@
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "render/shutter.h"
+#include "sensors/imu.h"
+#include "sensors/imu_io.h"
 #include "trajectory/builtin_trajectory.h"
 #include "trajectory/formats.h"
 #include "trajectory/free_space.h"
@@ -39,6 +42,8 @@ struct GenerateArgs {
   SceneArgs scene;
   std::string trajectory;
   MotionArgs motion;
+  double imu_rate = 0.0;  ///< > 0: write imu0/ at this rate
+  std::string imu_noise = "euroc";
   int frames = 25;
   bool frames_set = false;
   double fps = 25.0;
@@ -126,6 +131,8 @@ CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
 void validateArgs(const GenerateArgs& a) {
   if (a.frames < 1) throw InputError("", "--frames", "must be >= 1");
   if (!(a.fps > 0 && a.fps <= 10000)) throw InputError("", "--fps", "must be in (0, 10000]");
+  if (!(a.imu_rate >= 0 && a.imu_rate <= 100000))
+    throw InputError("", "--imu", "must be in 0..100000 Hz");
   if (a.spp < 1 || a.spp > 1 << 20) throw InputError("", "--spp", "must be in 1..1048576");
   if (a.max_bounces < 0 || a.max_bounces > 1000)
     throw InputError("", "--max-bounces", "must be in 0..1000");
@@ -255,6 +262,20 @@ void runGenerate(const GenerateArgs& a) {
   Scene scene = a.scene.load();
   const CameraPath cam = loadTrajectory(a, scene);
   const Trajectory& traj = cam.frames;
+  // the IMU from the camera's continuous path (for random trajectories its 200 Hz samples,
+  // through which the spline passes exactly: knots at their spacing); made before anything is
+  // written, so that a path too short for a spline fails cleanly
+  ImuOptions imu;
+  std::optional<ImuSequence> imu_seq;
+  if (a.imu_rate > 0) {
+    imu.rate_hz = a.imu_rate;
+    imu.noise = imuNoiseFromArg(a.imu_noise, "--imu-noise");
+    imu.seed = a.seed;
+    SplineFitOptions fit;
+    if (cam.path.size() > cam.frames.size())
+      fit.knot_spacing_ns = cam.path.poses[1].t_ns - cam.path.poses[0].t_ns;
+    imu_seq = simulateImu(cam.path, imu, fit, nullptr, nullptr, cam.description);
+  }
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
@@ -272,6 +293,7 @@ void runGenerate(const GenerateArgs& a) {
   spec.meta = provenance(a, scene, opt, cam);
   SequenceWriter writer(spec, traj, formats);
 
+  if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate: IMU frame = camera frame");
   Renderer renderer(scene, opt.integrator);
   Shutter shutter;
   shutter.exposure_ns = static_cast<TimeNs>(std::llround(a.exposure_ms * 1e6));
@@ -327,6 +349,12 @@ void registerGenerate(CLI::App& app) {
                   "slambench, scenenet; T_world_camera, OpenCV camera axes). Default: the built-in "
                   "orbit for the built-in room, two-body for --layout");
   a->motion.addTo(*cmd);
+  cmd->add_option("--imu", a->imu_rate,
+                  "also write imu0/ (EuRoC csv, noise-free stream, biases, sensor.yaml) at this "
+                  "rate in Hz, e.g. 800, from a B-spline through the camera path (IMU frame = "
+                  "camera frame); default 0 = none");
+  cmd->add_option("--imu-noise", a->imu_noise,
+                  "none, euroc (ADIS16448, default) or a Kalibr/EuRoC imu yaml");
   cmd->add_option("--frames", a->frames,
                   "number of frames (default 25; with --trajectory: the first N poses)")
       ->each([a](const std::string&) { a->frames_set = true; });

@@ -3,6 +3,7 @@
 // the files they write.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -21,7 +22,7 @@ TEST(CliTrajectory, GenerateOnAGeneratedLayoutFindsItsOwnPath) {
   ASSERT_EQ(runInterinet("layout generate --seed 4 --texture-size 64 --out " + layout).exit_code, 0);
   RunResult r = runInterinet("generate --layout " + layout +
                              "/layout.json --trajectory hand-held --frames 3 --spp 1 --width 64 "
-                             "--height 48 --fx 60 --fy 60 --no-progress --seed 9 --out " +
+                             "--height 48 --fx 60 --fy 60 --no-progress --seed 9 --imu 400 --out " +
                              (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // one sequence folder with 3 labelled frames
@@ -42,6 +43,13 @@ TEST(CliTrajectory, GenerateOnAGeneratedLayoutFindsItsOwnPath) {
     EXPECT_LT(p.T_world_camera.rotation().col(2).z(), 0.0) << "hand-held looks down";
   }
   EXPECT_NE(meta.find("hand-held random trajectory, seed 9"), std::string::npos) << meta;
+  // --imu 400: 3 frames at 25 Hz span 80 ms, so 33 samples at 400 Hz, EuRoC header first
+  std::string imu;
+  for (const auto& [name, text] : tree)
+    if (name.find("imu0/data.csv") != std::string::npos) imu = text;
+  ASSERT_FALSE(imu.empty());
+  EXPECT_EQ(imu.rfind("#timestamp [ns],w_RS_S_x [rad s^-1]", 0), 0u);
+  EXPECT_EQ(std::count(imu.begin(), imu.end(), '\n'), 1 + 33);
 }
 
 TEST(CliTrajectory, GenerateConvertShowAndScore) {
