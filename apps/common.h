@@ -107,6 +107,7 @@ void registerBench(CLI::App& app);
 void registerTrajectory(CLI::App& app);
 void registerEval(CLI::App& app);
 void registerImu(CLI::App& app);
+void registerDepthNoise(CLI::App& app);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 void addTrainStyleCommand(CLI::App* trajectory_cmd);
 

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   inet::app::registerTrajectory(app);
   inet::app::registerEval(app);
   inet::app::registerImu(app);
+  inet::app::registerDepthNoise(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -50,6 +50,18 @@ TEST(CliTrajectory, GenerateOnAGeneratedLayoutFindsItsOwnPath) {
   ASSERT_FALSE(imu.empty());
   EXPECT_EQ(imu.rfind("#timestamp [ns],w_RS_S_x [rad s^-1]", 0), 0u);
   EXPECT_EQ(std::count(imu.begin(), imu.end(), '\n'), 1 + 33);
+  // Kinect-like depth for the same sequence, twice: same seed, same bytes
+  std::string seq;
+  for (const auto& [name, text] : tree)
+    if (name.size() > 9 && name.compare(name.size() - 9, 9, "meta.json") == 0)
+      seq = (dir / "out" / name.substr(0, name.size() - 10)).string();
+  ASSERT_FALSE(seq.empty());
+  RunResult noisy = runInterinet("depth-noise --sequence " + seq + " --seed 4");
+  ASSERT_EQ(noisy.exit_code, 0) << noisy.err;
+  const auto first = readTree(std::filesystem::path(seq) / "depth0_noisy");
+  EXPECT_EQ(first.size(), 3u + 2u) << "3 frames, data.csv, noise.yaml";
+  ASSERT_EQ(runInterinet("depth-noise --sequence " + seq + " --seed 4").exit_code, 0);
+  EXPECT_EQ(readTree(std::filesystem::path(seq) / "depth0_noisy"), first);
 }
 
 TEST(CliTrajectory, GenerateConvertShowAndScore) {
