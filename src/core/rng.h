@@ -7,7 +7,9 @@
 // sample) and a block index that advances as draws are consumed.
 #include <Random123/philox.h>
 
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string_view>
 
 namespace inet {
@@ -36,6 +38,22 @@ class CounterRng {
   }
   /// Uniform double in [lo, hi).
   double uniformDouble(double lo, double hi) { return lo + (hi - lo) * uniformDouble(); }
+  /// Two independent standard normal values from two uniforms (Box-Muller; 1 - U keeps the log
+  /// finite).
+  void normalPair(double& z0, double& z1) {
+    const double u1 = 1.0 - uniformDouble();  // (0, 1]
+    const double u2 = uniformDouble();
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    const double a = 2.0 * std::numbers::pi * u2;
+    z0 = r * std::cos(a);
+    z1 = r * std::sin(a);
+  }
+  /// One standard normal value (the first of a pair; uses two uniforms).
+  double normal() {
+    double z0, z1;
+    normalPair(z0, z1);
+    return z0;
+  }
 
  private:
   void refill() {

@@ -20,16 +20,6 @@ namespace {
 
 constexpr double kHalfPi = std::numbers::pi / 2;
 
-/// Box-Muller: two independent N(0, 1) from two uniforms (1 - U keeps the log finite).
-void gaussianPair(CounterRng& rng, double& z0, double& z1) {
-  const double u1 = 1.0 - rng.uniformDouble();  // (0, 1]
-  const double u2 = rng.uniformDouble();
-  const double r = std::sqrt(-2.0 * std::log(u1));
-  const double a = 2.0 * std::numbers::pi * u2;
-  z0 = r * std::cos(a);
-  z1 = r * std::sin(a);
-}
-
 double normalCdf(double x) {
   return 0.5 * std::erfc(-x / std::numbers::sqrt2);
 }
@@ -266,8 +256,8 @@ ImageF kinectNoisyDepth(const ImageF& z, const ImageF& normal_cam, const CameraI
         CounterRng rng(seed, RngStream::Sensor, frame, static_cast<uint32_t>(idx),
                        kDepthNoiseRngTag);
         double sx, sy, na, unused;
-        gaussianPair(rng, sx, sy);
-        gaussianPair(rng, na, unused);
+        rng.normalPair(sx, sy);
+        rng.normalPair(na, unused);
         const double u_drop = rng.uniformDouble();
         // 1. Returns that cannot exist.
         const double z0 = z.at(x, y);

@@ -10,16 +10,6 @@
 namespace inet {
 namespace {
 
-/// Box-Muller: two independent N(0, 1) from two uniforms (1 - U keeps the log finite).
-inline void gaussianPair(CounterRng& rng, double& z0, double& z1) {
-  const double u1 = 1.0 - rng.uniformDouble();  // (0, 1]
-  const double u2 = rng.uniformDouble();
-  const double r = std::sqrt(-2.0 * std::log(u1));
-  const double a = 2.0 * M_PI * u2;
-  z0 = r * std::cos(a);
-  z1 = r * std::sin(a);
-}
-
 TimeNs secondsToNs(double s) { return static_cast<TimeNs>(std::llround(s * 1e9)); }
 
 }  // namespace
@@ -120,7 +110,7 @@ void addImuNoise(const std::vector<ImuSample>& ideal, const ImuNoise& noise, dou
     CounterRng rng(seed, RngStream::Sensor, kImuRngTag, static_cast<uint32_t>(k),
                    static_cast<uint32_t>(static_cast<uint64_t>(k) >> 32));
     double n[12];
-    for (int j = 0; j < 12; j += 2) gaussianPair(rng, n[j], n[j + 1]);
+    for (int j = 0; j < 12; j += 2) rng.normalPair(n[j], n[j + 1]);
     const Vec3 wg(n[0], n[1], n[2]), wa(n[3], n[4], n[5]);
     const Vec3 ng(n[6], n[7], n[8]), na(n[9], n[10], n[11]);
     measured[k].t_ns = ideal[k].t_ns;

@@ -22,12 +22,6 @@ constexpr double kMaxYawRate = 2.0;  // look-forward: yaw rate limit at w_mult 1
 constexpr double kLeanOmega = 2.0;  // natural frequency of the up vector's lean (rad/s)
 constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
 
-/// Standard normal from two uniforms (Box-Muller; one value per call keeps draws simple).
-double gaussian(CounterRng& rng) {
-  double u1 = std::max(rng.uniformDouble(), 1e-300), u2 = rng.uniformDouble();
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-}
-
 /// A 3-D Ornstein-Uhlenbeck process with correlation time tau and stationary standard
 /// deviation sigma per axis, stepped exactly (not Euler), so its statistics do not depend on dt,
 /// then low-passed (first order, time constant kForceSmoothing) into `value`. An OU process is
@@ -44,12 +38,12 @@ struct OuProcess {
   Vec3 sigma = Vec3::Zero();
   double tau = 1.0;
   void start(CounterRng& rng) {
-    for (int c = 0; c < 3; ++c) ou[c] = sigma[c] * gaussian(rng);
+    for (int c = 0; c < 3; ++c) ou[c] = sigma[c] * rng.normal();
     value = ou;
   }
   void step(CounterRng& rng, double dt) {
     const double a = std::exp(-dt / tau), b = std::sqrt(1.0 - a * a);
-    for (int c = 0; c < 3; ++c) ou[c] = a * ou[c] + b * sigma[c] * gaussian(rng);
+    for (int c = 0; c < 3; ++c) ou[c] = a * ou[c] + b * sigma[c] * rng.normal();
     value += (ou - value) * (dt / kForceSmoothing);
   }
 };
@@ -162,6 +156,7 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   const double kp = std::pow(4.0 * out.w_mult, 2), kd = 2.0 * std::sqrt(kp);  // look-forward yaw
 
   Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero(), guide_smooth = Vec3::Zero();
+  double steer = 0.0, brake = 0.0;  // look-forward: smoothed turn (+ left) and brake strengths
   double yaw = std::atan2(s.target.y() - s.cam.y(), s.target.x() - s.cam.x()), yaw_rate = 0.0;
   Vec3 heading(std::cos(yaw), std::sin(yaw), 0);
   double pitch = -0.15;
@@ -176,38 +171,44 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     Vec3 vh(v_cam.x(), v_cam.y(), 0);
     if (vh.norm() > 0.05) heading = vh.normalized();
     if (forward && f.dot(heading) < 0) f -= 2.0 * f.dot(heading) * heading;
-    // guidance: walls push, look-forward steers, heights are kept; these forces change
-    // abruptly (the distance field's gradient is piecewise constant, the steering side flips),
-    // so they act through a 0.1 s low-pass, keeping the base motion smooth
+    // guidance: walls push and heights are kept; these forces change abruptly (the distance
+    // field's gradient is piecewise constant), so they act through a 0.1 s low-pass, keeping the
+    // base motion smooth
     Vec3 guide = Vec3::Zero();
     const double d = space.lowerBound(s.cam);
     if (d < clear + kWallBand) {
       Vec3 g = space.gradient(s.cam);
       if (g.norm() > 1e-9) guide += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
     }
+    // look-forward: a walker steers round what is ahead instead of bouncing off it: look ahead
+    // along the heading and turn towards the freer side, braking as the obstacle nears. The
+    // turn and the brake act along the current velocity (perpendicular to it, and against it),
+    // so they never add energy; only their strengths go through the low-pass.
+    double steer_target = 0.0, brake_target = 0.0;
+    const Vec3 left(-heading.y(), heading.x(), 0);
     if (forward && vh.norm() > 0.05) {
-      // a walker steers round what is ahead instead of bouncing off it: look ahead along the
-      // heading and turn towards the freer side, braking as the obstacle nears
       const double speed = vh.norm(), look = 0.4 + 1.0 * speed;
       const double ahead = space.lowerBound(s.cam + look * heading);
       const double want = clear + 0.3;
       if (ahead < want) {
-        const Vec3 left(-heading.y(), heading.x(), 0);
         const double c = std::cos(M_PI / 3), sn = std::sin(M_PI / 3);
         const double dl = space.lowerBound(s.cam + look * (c * heading + sn * left));
         const double dr = space.lowerBound(s.cam + look * (c * heading - sn * left));
         const double urgency = std::clamp((want - ahead) / want, 0.0, 1.0);
-        guide += urgency * (speed * speed / 0.4) * (dl >= dr ? left : Vec3(-left));
-        guide -= urgency * 1.0 * vh;
+        steer_target = dl >= dr ? urgency : -urgency;
+        brake_target = urgency;
       }
     }
+    steer += (steer_target - steer) * (kSimDt / kGuideSmoothing);
+    brake += (brake_target - brake) * (kSimDt / kGuideSmoothing);
     const double mid = 0.5 * (h_lo + h_hi);
     guide.z() += -1.0 * (s.cam.z() - mid);  // weak pull to mid-height, so heights vary but stay
     const double margin = 0.15;             // and a firm one near the height limits
     if (s.cam.z() < h_lo + margin) guide.z() += 30.0 * (h_lo + margin - s.cam.z());
     if (s.cam.z() > h_hi - margin) guide.z() -= 30.0 * (s.cam.z() - (h_hi - margin));
     guide_smooth += (guide - guide_smooth) * (kSimDt / kGuideSmoothing);
-    const Vec3 a = f - cam_drag * v_cam + guide_smooth;
+    const Vec3 a = f - cam_drag * v_cam + guide_smooth +
+                   steer * (vh.squaredNorm() / 0.4) * left - brake * 1.0 * vh;
     v_cam += a * kSimDt;
     Vec3 next = s.cam + v_cam * kSimDt;
     if (next.z() < h_lo || next.z() > h_hi) {
@@ -256,8 +257,11 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       // up or down, and 0.3-2.5 m above the floor
       if (dist_h < 0.8 && dist_h > 1e-9) at += 6.0 * (0.8 - dist_h) * rel_h / dist_h;
       if (dist_h > 2.5) at -= 6.0 * (dist_h - 2.5) * rel_h / dist_h;
-      const double z_hi = opt.type == MotionType::HandHeld ? s.cam.z() - 0.2 : 2.5;
-      if (s.target.z() > z_hi) at.z() -= 6.0 * (s.target.z() - z_hi);
+      // hand-held: a firm spring keeps the look-at point 0.3 m below the camera or lower, so
+      // the hard limit below is a last resort (a clamp stops the view's vertical turns dead)
+      const bool below = opt.type == MotionType::HandHeld;
+      const double z_hi = below ? s.cam.z() - 0.3 : 2.5;
+      if (s.target.z() > z_hi) at.z() -= (below ? 30.0 : 6.0) * (s.target.z() - z_hi);
       if (s.target.z() < 0.3) at.z() += 6.0 * (0.3 - s.target.z());
       v_target += at * kSimDt;
       // the look-at body is carried along with the camera in part (kCarry), so the view's turn

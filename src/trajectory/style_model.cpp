@@ -59,11 +59,6 @@ auto head(const StyleModel& m, const S& s) {
   return o;
 }
 
-double gaussian(CounterRng& rng) {  // Box-Muller
-  const double u1 = 1.0 - rng.uniformDouble(), u2 = rng.uniformDouble();
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
-}
-
 }  // namespace
 
 int StyleModelConfig::receptiveField() const {
@@ -289,7 +284,6 @@ const StyleModel& builtinStyleModel() {
   return model;
 }
 
-
 // ---- data ----
 
 std::vector<Trajectory> loadMotionSegments(const std::string& path, double rate_hz,
@@ -488,7 +482,7 @@ Trajectory applyStyle(const Trajectory& base_dense, const StyleModel& model, uin
     const Eigen::Matrix<double, 12, 1> o = stream.push(x);
     CounterRng rng(seed, RngStream::Trajectory, kStyleRngTag, static_cast<uint32_t>(step), 0);
     for (int c = 0; c < 6; ++c)
-      x[c] = o[c] + options.temperature * std::exp(0.5 * o[6 + c]) * gaussian(rng);
+      x[c] = o[c] + options.temperature * std::exp(0.5 * o[6 + c]) * rng.normal();
     const Vec6 r = x.cwiseProduct(model.scale) * options.strength;
     d += dt * (r.head<3>() - kappa * d);
     phi += dt * (r.tail<3>() - kappa * phi);

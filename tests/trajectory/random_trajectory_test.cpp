@@ -196,8 +196,11 @@ class RandomTrajectories : public ::testing::Test {
     EXPECT_GT(ratio[ratio.size() / 2], 0.5);
     EXPECT_LT(ratio[ratio.size() / 2], 1.2);
     if (type != MotionType::LookForward) {
-      // the view turns with w_mult and not with the camera's speed
-      EXPECT_GT(coef[1], 0.6);
+      // the view turns with w_mult and not with the camera's speed. The coefficient's standard
+      // error here is about 0.06 (100 trajectories of 5 s); two-body measures 0.8, hand-held
+      // about 0.6 (keeping the look-at point below the camera takes away vertical turns that
+      // would scale with w_mult)
+      EXPECT_GT(coef[1], type == MotionType::TwoBody ? 0.6 : 0.45);
       EXPECT_LT(coef[1], 1.1);
       EXPECT_LT(std::abs(coef[2]), 0.2);
     } else {
