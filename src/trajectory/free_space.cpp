@@ -441,7 +441,9 @@ bool FreeSpace::hasClearance(const Vec3& p, double clearance) const {
 }
 
 Vec3 FreeSpace::gradient(const Vec3& p) const {
-  const double e = voxel_ * 0.5;
+  // central differences over a whole voxel: the interpolated field is continuous, so this is
+  // continuous in p too (a half-voxel step would be piecewise constant)
+  const double e = voxel_;
   Vec3 g;
   for (int c = 0; c < 3; ++c) {
     Vec3 d = Vec3::Zero();

@@ -74,7 +74,8 @@ class FreeSpace {
   /// A distance (m) to the geometry that is never larger than the true one; <= 0 in or next to
   /// occupied voxels and outside the grid. Outdoors (see above) counts as 0.
   double lowerBound(const Vec3& p) const;
-  /// Gradient of the interpolated distance field (points away from the nearest geometry).
+  /// Gradient of the interpolated distance field (points away from the nearest geometry);
+  /// central differences over one voxel, continuous in p.
   Vec3 gradient(const Vec3& p) const;
   /// True if p is indoors and lowerBound(p) >= clearance.
   bool isFree(const Vec3& p, double clearance) const { return lowerBound(p) >= clearance; }

@@ -17,7 +17,7 @@ constexpr double kSimDt = 1e-3;     // simulation step (s)
 constexpr double kDrag = 1.0;       // k: velocity decays as exp(-k t) without forces (1/s)
 constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
 constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
-constexpr double kWallBand = 0.4;   // distance beyond the clearance where walls start to push
+constexpr double kWallBand = 0.25;  // distance beyond the clearance where walls start to push
 constexpr double kMaxYawRate = 2.0;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
 constexpr double kLeanOmega = 2.0;  // natural frequency of the up vector's lean (rad/s)
 constexpr double kCarry = 1.0;      // share of the camera's velocity the look-at body takes on
@@ -30,7 +30,8 @@ constexpr double kCarry = 1.0;      // share of the camera's velocity the look-a
 /// smooth (acceleration falls as 1/f^2 above ~0.5 Hz), as the paper's base trajectories are
 /// meant to be: realistic hand-held jitter is the style model's job.
 constexpr double kForceSmoothing = 0.3;  // s
-constexpr double kGuideSmoothing = 0.1;  // s: low-pass of the wall, steering and height forces
+constexpr double kGuideSmoothing = 0.1;  // s: low-pass of the look-forward turn and brake
+constexpr double kWallPush = 8.0;     // m/s^2: wall push at the clearance (0 at the band edge)
 
 struct OuProcess {
   Vec3 ou = Vec3::Zero();
@@ -155,7 +156,7 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   if (lean.norm() > max_tilt) lean *= max_tilt / lean.norm();
   const double kp = std::pow(4.0 * out.w_mult, 2), kd = 2.0 * std::sqrt(kp);  // look-forward yaw
 
-  Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero(), guide_smooth = Vec3::Zero();
+  Vec3 v_cam = Vec3::Zero(), v_target = Vec3::Zero();
   double steer = 0.0, brake = 0.0;  // look-forward: smoothed turn (+ left) and brake strengths
   double yaw = std::atan2(s.target.y() - s.cam.y(), s.target.x() - s.cam.x()), yaw_rate = 0.0;
   Vec3 heading(std::cos(yaw), std::sin(yaw), 0);
@@ -171,14 +172,15 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     Vec3 vh(v_cam.x(), v_cam.y(), 0);
     if (vh.norm() > 0.05) heading = vh.normalized();
     if (forward && f.dot(heading) < 0) f -= 2.0 * f.dot(heading) * heading;
-    // guidance: walls push and heights are kept; these forces change abruptly (the distance
-    // field's gradient is piecewise constant), so they act through a 0.1 s low-pass, keeping the
-    // base motion smooth
+    // guidance: walls push and heights are kept. Both forces are continuous in the position
+    // (the field's gradient is a central difference over a whole voxel), so the base motion
+    // stays smooth without a low-pass in time (a 0.1 s one here once pumped a camera bouncing
+    // between the walls of a narrow room into growing oscillations: a delayed spring)
     Vec3 guide = Vec3::Zero();
     const double d = space.lowerBound(s.cam);
     if (d < clear + kWallBand) {
-      Vec3 g = space.gradient(s.cam);
-      if (g.norm() > 1e-9) guide += 8.0 * (clear + kWallBand - d) / kWallBand * g.normalized();
+      const Vec3 g = space.gradient(s.cam);
+      if (g.norm() > 1e-9) guide += kWallPush * (clear + kWallBand - d) / kWallBand * g.normalized();
     }
     // look-forward: a walker steers round what is ahead instead of bouncing off it: look ahead
     // along the heading and turn towards the freer side, braking as the obstacle nears. The
@@ -206,8 +208,7 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     const double margin = 0.15;             // and a firm one near the height limits
     if (s.cam.z() < h_lo + margin) guide.z() += 30.0 * (h_lo + margin - s.cam.z());
     if (s.cam.z() > h_hi - margin) guide.z() -= 30.0 * (s.cam.z() - (h_hi - margin));
-    guide_smooth += (guide - guide_smooth) * (kSimDt / kGuideSmoothing);
-    const Vec3 a = f - cam_drag * v_cam + guide_smooth +
+    const Vec3 a = f - cam_drag * v_cam + guide +
                    steer * (vh.squaredNorm() / 0.4) * left - brake * 1.0 * vh;
     v_cam += a * kSimDt;
     Vec3 next = s.cam + v_cam * kSimDt;
