@@ -108,9 +108,17 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
                      fmt::format("no place {:.2f} m from all geometry at {:.1f}-{:.1f} m height "
                                  "for a camera",
                                  opt.clearance, h_lo, h_hi));
+  // start in open space: among the quarter of the candidates farthest from any geometry (the
+  // middles of the larger rooms), so a trajectory does not open in a closet facing a wall
+  std::vector<std::pair<double, size_t>> open;
+  open.reserve(starts.size());
+  for (size_t i = 0; i < starts.size(); ++i) open.emplace_back(-space.lowerBound(starts[i]), i);
+  const size_t keep = std::max<size_t>(1, open.size() / 4);
+  std::nth_element(open.begin(), open.begin() + (keep - 1), open.end());
+  open.resize(keep);
+  std::sort(open.begin(), open.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
   State s;
-  s.cam = starts[std::min(starts.size() - 1,
-                          static_cast<size_t>(rng.uniformDouble() * starts.size()))];
+  s.cam = starts[open[std::min(keep - 1, static_cast<size_t>(rng.uniformDouble() * keep))].second];
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
   // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
