@@ -258,8 +258,7 @@ class PathTracer final : public Integrator {
       const BsdfParams& b = scene.object(object).bsdf;
       if (b.type != BsdfType::ThinDielectric || scene.object(object).first_light >= 0)
         return Vec3f::Zero();
-      const Vec3f ng =
-          scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)).normalized();
+      const Vec3f ng = scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
       T = T.cwiseProduct(thinDielectricTransmission(b, ng.dot(d)));
       const float t = rh.ray.tfar;
       const Vec3f p = o + t * d;

@@ -13,27 +13,6 @@ namespace {
 constexpr TimeNs kMaxShutterNs = 100'000'000'000;  // 100 s
 constexpr int kMaxRows = 1 << 20;
 
-/// Spherical linear interpolation along the shorter arc. The angle comes from atan2 of the
-/// chord lengths, accurate for tiny and for near-opposite rotations alike (acos of the dot
-/// product loses half the digits near 1).
-Quat slerpShortest(const Quat& a, Quat b, double alpha) {
-  if (a.coeffs().dot(b.coeffs()) < 0) b.coeffs() = -b.coeffs();
-  const double phi =
-      2 * std::atan2((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
-  double wa, wb;
-  if (phi < 1e-9) {  // sin(k phi) / sin(phi) -> k; the normalisation below absorbs the rest
-    wa = 1 - alpha;
-    wb = alpha;
-  } else {
-    const double s = std::sin(phi);
-    wa = std::sin((1 - alpha) * phi) / s;
-    wb = std::sin(alpha * phi) / s;
-  }
-  Quat q;
-  q.coeffs() = wa * a.coeffs() + wb * b.coeffs();
-  return q.normalized();
-}
-
 }  // namespace
 
 void Shutter::validate(const std::string& where) const {
@@ -70,17 +49,6 @@ TimeNs groundTruthTime(const Shutter& s, TimeNs frame_t_ns, int row, int height)
 
 TimeNs frameCentreTime(const Shutter& s, TimeNs frame_t_ns) {
   return frame_t_ns + (s.readout_ns + s.exposure_ns) / 2;
-}
-
-Pose interpolatePose(const Pose& a, TimeNs ta, const Pose& b, TimeNs tb, TimeNs t) {
-  INET_CHECK_MSG(tb >= ta, fmt::format("interpolatePose: tb {} < ta {}", tb, ta));
-  if (t == ta || tb == ta) return a;
-  if (t == tb) return b;
-  const double alpha = static_cast<double>(t - ta) / static_cast<double>(tb - ta);
-  Pose p;
-  p.t = (1 - alpha) * a.t + alpha * b.t;
-  p.q = slerpShortest(a.q.normalized(), b.q.normalized(), alpha);
-  return p;
 }
 
 }  // namespace inet

@@ -15,8 +15,6 @@
 //    single ground-truth pose is the one at frameCentreTime = frame_t + (readout + exposure) / 2,
 //    which for a global shutter is exactly the instant of every ground-truth pass.
 //  - With the defaults (exposure = readout = 0) all of these times equal frame_t.
-#include <algorithm>
-#include <iterator>
 #include <string>
 
 #include "core/pose.h"
@@ -43,30 +41,5 @@ TimeNs groundTruthTime(const Shutter& s, TimeNs frame_t_ns, int row, int height)
 /// The centre of the whole frame's exposure (first row open to last row close): the time of the
 /// frame's single ground-truth pose.
 TimeNs frameCentreTime(const Shutter& s, TimeNs frame_t_ns);
-
-/// Pose at time t between a (at ta) and b (at tb), ta < tb (or ta == tb, which returns a):
-/// position linear in t, rotation by slerp along the shorter arc (q and -q are the same
-/// rotation, so b is flipped when a.q . b.q < 0). Returns a exactly at ta and b exactly at tb;
-/// extrapolates outside [ta, tb].
-Pose interpolatePose(const Pose& a, TimeNs ta, const Pose& b, TimeNs tb, TimeNs t);
-
-/// Pose at time t in a list sorted by strictly increasing time: any random-access container whose
-/// elements have members t_ns and T_world_camera (e.g. Trajectory::poses). Interpolates between
-/// the two neighbours of t (exact at a stored time). Returns false if the list is empty or t lies
-/// outside [front, back]; out then holds the nearest end pose (held constant), if any.
-template <class PoseList>
-bool interpolatePoseAt(const PoseList& poses, TimeNs t, Pose& out) {
-  if (poses.empty()) return false;
-  const auto first = std::begin(poses), last = std::prev(std::end(poses));
-  if (t <= first->t_ns || t >= last->t_ns) {
-    out = t <= first->t_ns ? first->T_world_camera : last->T_world_camera;
-    return t == first->t_ns || t == last->t_ns;
-  }
-  // first element with time > t; it exists and is not `first`, because front < t < back
-  auto hi = std::upper_bound(first, last, t, [](TimeNs x, const auto& p) { return x < p.t_ns; });
-  auto lo = std::prev(hi);
-  out = interpolatePose(lo->T_world_camera, lo->t_ns, hi->T_world_camera, hi->t_ns, t);
-  return true;
-}
 
 }  // namespace inet

@@ -281,7 +281,6 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
           std::atomic_ref<uint8_t>(occupied[index(i, j, k)]).store(1, std::memory_order_relaxed);
         }
   });
-  occupied_count_ = static_cast<size_t>(std::count(occupied.begin(), occupied.end(), 1));
 
   // ---- indoors ----
   std::vector<uint8_t> indoor(count, 0);
@@ -453,27 +452,19 @@ Vec3 FreeSpace::gradient(const Vec3& p) const {
   return g;
 }
 
-std::vector<Vec3> FreeSpace::freeCentres(double clearance, double z_lo, double z_hi) const {
-  std::vector<Vec3> out;
+std::vector<FreeSpace::FreeVoxel> FreeSpace::freeCentres(double clearance, double z_lo,
+                                                         double z_hi) const {
+  std::vector<FreeVoxel> out;
   const double h2 = voxel_ * std::sqrt(3.0);
   for (int k = 0; k < nz_; ++k) {
     double z = origin_.z() + voxel_ * k;
     if (z < z_lo || z > z_hi) continue;
     for (int j = 0; j < ny_; ++j)
       for (int i = 0; i < nx_; ++i)
-        if (dist_[index(i, j, k)] - h2 >= clearance) out.push_back(origin_ + voxel_ * Vec3(i, j, k));
+        if (const double c = dist_[index(i, j, k)] - h2; c >= clearance)
+          out.push_back({origin_ + voxel_ * Vec3(i, j, k), c});
   }
   return out;
-}
-
-double FreeSpace::freeArea(double clearance, double z) const {
-  int k = static_cast<int>(std::lround((z - origin_.z()) / voxel_));
-  if (k < 0 || k >= nz_) return 0.0;
-  size_t n = 0;
-  const double h2 = voxel_ * std::sqrt(3.0);
-  for (int j = 0; j < ny_; ++j)
-    for (int i = 0; i < nx_; ++i) n += dist_[index(i, j, k)] - h2 >= clearance;
-  return n * voxel_ * voxel_;
 }
 
 }  // namespace inet

@@ -85,7 +85,6 @@ class FreeSpace {
   bool hasClearance(const Vec3& p, double clearance) const;
   /// The exact distance to the triangles, for final checks.
   double exactDistance(const Vec3& p) const { return exact_->distance(p, 10.0); }
-  const WorldTriangles& triangles() const { return exact_->triangles(); }
 
   /// Grid geometry and what it holds.
   double voxel() const { return voxel_; }
@@ -93,13 +92,14 @@ class FreeSpace {
   int nx() const { return nx_; }
   int ny() const { return ny_; }
   int nz() const { return nz_; }
-  /// Voxel centres that are indoors with lowerBound >= clearance, between heights z_lo and z_hi.
-  std::vector<Vec3> freeCentres(double clearance, double z_lo, double z_hi) const;
-  /// Floor area (m^2) of the free region at height z with the given clearance.
-  double freeArea(double clearance, double z) const;
-  /// Size of the build inputs, for messages and benchmarks.
-  size_t triangleCount() const { return triangles().triangles.size(); }
-  size_t occupiedVoxels() const { return occupied_count_; }
+  /// A voxel centre and the lower bound of its distance to the geometry (m).
+  struct FreeVoxel {
+    Vec3 centre;
+    double clearance;
+  };
+  /// Voxels that are indoors with a clearance >= `clearance`, centres between heights z_lo and
+  /// z_hi.
+  std::vector<FreeVoxel> freeCentres(double clearance, double z_lo, double z_hi) const;
 
  private:
   size_t index(int i, int j, int k) const { return (static_cast<size_t>(k) * ny_ + j) * nx_ + i; }
@@ -111,7 +111,6 @@ class FreeSpace {
   Vec3 origin_ = Vec3::Zero();
   int nx_ = 0, ny_ = 0, nz_ = 0;
   std::vector<float> dist_;       ///< EDT between voxel centres (m); 0 occupied, -1 outdoors
-  size_t occupied_count_ = 0;
 };
 
 }  // namespace inet

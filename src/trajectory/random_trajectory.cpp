@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -101,7 +102,8 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
 
   // ---- start: a random free voxel at a comfortable height ----
   const double h_lo = opt.min_height, h_hi = opt.max_height;
-  std::vector<Vec3> starts = space.freeCentres(clear + 0.2, h_lo + 0.2, h_hi - 0.2);
+  std::vector<FreeSpace::FreeVoxel> starts =
+      space.freeCentres(clear + 0.2, h_lo + 0.2, h_hi - 0.2);
   if (starts.empty()) starts = space.freeCentres(clear, h_lo, h_hi);
   if (starts.empty())
     throw InputError(source, "free space",
@@ -109,16 +111,19 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
                                  "for a camera",
                                  opt.clearance, h_lo, h_hi));
   // start in open space: among the quarter of the candidates farthest from any geometry (the
-  // middles of the larger rooms), so a trajectory does not open in a closet facing a wall
-  std::vector<std::pair<double, size_t>> open;
-  open.reserve(starts.size());
-  for (size_t i = 0; i < starts.size(); ++i) open.emplace_back(-space.lowerBound(starts[i]), i);
-  const size_t keep = std::max<size_t>(1, open.size() / 4);
-  std::nth_element(open.begin(), open.begin() + (keep - 1), open.end());
-  open.resize(keep);
-  std::sort(open.begin(), open.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  // middles of the larger rooms), so a trajectory does not open in a closet facing a wall; the
+  // rest keep their grid order, so the draw below is deterministic
+  const size_t keep = std::max<size_t>(1, starts.size() / 4);
+  std::vector<size_t> order(starts.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::nth_element(order.begin(), order.begin() + (keep - 1), order.end(), [&](size_t a, size_t b) {
+    return starts[a].clearance != starts[b].clearance ? starts[a].clearance > starts[b].clearance
+                                                      : a < b;
+  });
+  order.resize(keep);
+  std::sort(order.begin(), order.end());
   State s;
-  s.cam = starts[open[std::min(keep - 1, static_cast<size_t>(rng.uniformDouble() * keep))].second];
+  s.cam = starts[order[std::min(keep - 1, static_cast<size_t>(rng.uniformDouble() * keep))]].centre;
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
   // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
@@ -187,8 +192,17 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     Vec3 guide = Vec3::Zero();
     const double d = space.lowerBound(s.cam);
     if (d < clear + kWallBand) {
-      const Vec3 g = space.gradient(s.cam);
-      if (g.norm() > 1e-9) guide += kWallPush * (clear + kWallBand - d) / kWallBand * g.normalized();
+      Vec3 g = space.gradient(s.cam);
+      if (g.norm() > 1e-9) {
+        g.normalize();
+        guide += kWallPush * (clear + kWallBand - d) / kWallBand * g;
+        // and a brake on the speed towards the wall, just what stops it before the clearance
+        // (v^2 / 2 gap, with a margin), so a fast camera does not reach it and bounce: a bounce
+        // is an impulse of acceleration, the opposite of a smooth base path
+        const double towards = std::max(0.0, -v_cam.dot(g));
+        const double gap = std::max(d - clear, 0.02);
+        guide += 1.1 * towards * towards / (2.0 * gap) * g;
+      }
     }
     // look-forward: a walker steers round what is ahead instead of bouncing off it: look ahead
     // along the heading and turn towards the freer side, braking as the obstacle nears. The

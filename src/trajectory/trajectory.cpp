@@ -1,6 +1,5 @@
 #include "trajectory/trajectory.h"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,14 +20,9 @@ Vec3 Trajectory::velocityWorld(size_t k) const {
 
 Pose Trajectory::poseAt(TimeNs t_ns) const {
   INET_CHECK(!poses.empty());
-  if (t_ns <= poses.front().t_ns) return poses.front().T_world_camera;
-  if (t_ns >= poses.back().t_ns) return poses.back().T_world_camera;
-  auto b = std::upper_bound(poses.begin(), poses.end(), t_ns,
-                            [](TimeNs v, const TimedPose& p) { return v < p.t_ns; });
-  auto a = std::prev(b);
-  const double f = static_cast<double>(t_ns - a->t_ns) / static_cast<double>(b->t_ns - a->t_ns);
-  const Pose &pa = a->T_world_camera, &pb = b->T_world_camera;
-  return {pa.q.slerp(f, pb.q).normalized(), pa.t + f * (pb.t - pa.t)};
+  Pose out;
+  interpolatePoseAt(poses, t_ns, out);
+  return out;
 }
 
 bool parseSecondsToNs(const std::string& s, TimeNs& out) {

@@ -20,8 +20,8 @@ struct Trajectory {
   /// Linear velocity of the camera centre in the world frame at pose k (central difference,
   /// one-sided at the ends; zero for a single pose), m/s.
   Vec3 velocityWorld(size_t k) const;
-  /// The pose at t_ns: linear in position, slerp in rotation between the two neighbouring poses
-  /// (held at the ends). Needs a non-empty trajectory.
+  /// The pose at t_ns (interpolatePoseAt: linear in position, shortest-arc slerp in rotation,
+  /// held at the ends). Needs a non-empty trajectory.
   Pose poseAt(TimeNs t_ns) const;
 };
 

@@ -148,8 +148,9 @@ TEST(TrajectoryFormats, EveryFormatRoundTripsThroughAFile) {
                                      (f == TrajectoryFormat::Icl ? ".gt.freiburg" : "")))
                                  .string();
     writeTrajectory(path, t, f);
-    if (f == TrajectoryFormat::Icl)
+    if (f == TrajectoryFormat::Icl) {
       EXPECT_EQ(detectTrajectoryFormat("traj.txt", readTextFile(path)), TrajectoryFormat::Tum);
+    }
     // our own output is recognised, except SLAMBench files, which read as (identical) TUM
     const std::string text = readTextFile(path);
     EXPECT_EQ(detectTrajectoryFormat(path, text),
