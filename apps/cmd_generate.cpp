@@ -15,9 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "common.h"
+#include "sensor_outputs.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "dataset/boxes_json.h"
 #include "dataset/sequence_writer.h"
+#include "core/atomic_file.h"
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "render/shutter.h"
@@ -42,7 +45,7 @@ struct GenerateArgs {
   SceneArgs scene;
   std::string trajectory;
   MotionArgs motion;
-  double imu_rate = 0.0;  ///< > 0: write imu0/ at this rate
+  double imu_rate = 800.0;  ///< rate of imu0/ when the imu pass is on; 0 = no imu
   std::string imu_noise = "euroc";
   int frames = 25;
   bool frames_set = false;
@@ -51,7 +54,9 @@ struct GenerateArgs {
   int max_bounces = 8;
   uint64_t seed = 0;
   int threads = 0;
-  std::string passes = "all";
+  std::string passes = "default";
+  double stereo = 0.0;  ///< > 0: cam1 at this baseline (m)
+  EventArgs events;
   std::string formats = "asl,tum";
   std::string sequence = "seq_000";
   std::string out = "out";
@@ -255,32 +260,47 @@ void runGenerate(const GenerateArgs& a) {
   K.validate("generate");
   const LensModel lens = a.lens.make(K, "generate");
   ThreadLimit limit(a.threads);
-  PassMask passes = lensPasses(parsePassList(a.passes, "generate"), lens_type);
+  const SequencePasses want = parseSequencePasses(a.passes, lens_type, a.readout_ms > 0);
+  PassMask passes = lensPasses(want.frame, lens_type);
   if (a.hdr && !has(passes, Pass::Rgb)) throw InputError("", "--hdr", "needs the rgb pass");
+  if (!(a.stereo >= 0 && a.stereo <= 10))
+    throw InputError("", "--stereo", "the baseline must be in 0..10 m");
+  const bool want_imu = want.imu && a.imu_rate > 0;
+  const EventCameraOptions event_opt = a.events.options(a.seed);
+  const KinectNoiseOptions depth_noise;
   std::vector<std::string> formats = splitList(a.formats);
   // Load and check every input before anything is written.
   Scene scene = a.scene.load();
   const CameraPath cam = loadTrajectory(a, scene);
   const Trajectory& traj = cam.frames;
-  // the IMU from the camera's continuous path (for random trajectories its 200 Hz samples,
-  // through which the spline passes exactly: knots at their spacing); made before anything is
-  // written, so that a path too short for a spline fails cleanly
+  // the IMU and the event camera's path from the camera's continuous path, made before anything
+  // is written, so that a path too short for a spline fails cleanly
   ImuOptions imu;
   std::optional<ImuSequence> imu_seq;
-  if (a.imu_rate > 0) {
+  // for random trajectories the spline has knots at the 200 Hz samples, through which it passes
+  // exactly; for a file, the default spacing (the input's mean, at least 50 ms)
+  SplineFitOptions fit;
+  if (cam.path.size() > cam.frames.size())
+    fit.knot_spacing_ns = cam.path.poses[1].t_ns - cam.path.poses[0].t_ns;
+  std::optional<PoseSpline> spline;  // the event camera's path: the IMU's spline
+  if (want.events) spline = PoseSpline::fit(cam.path, fit, nullptr, cam.description);
+  if (want_imu) {
     imu.rate_hz = a.imu_rate;
     imu.noise = imuNoiseFromArg(a.imu_noise, "--imu-noise");
     imu.seed = a.seed;
-    SplineFitOptions fit;
-    if (cam.path.size() > cam.frames.size())
-      fit.knot_spacing_ns = cam.path.poses[1].t_ns - cam.path.poses[0].t_ns;
-    imu_seq = simulateImu(cam.path, imu, fit, nullptr, nullptr, cam.description);
+    try {
+      imu_seq = simulateImu(cam.path, imu, fit, nullptr, nullptr, cam.description);
+    } catch (const InputError& e) {
+      // 'default' and 'all' leave the IMU out of sequences too short for a spline (a few
+      // frames); asked for by name, that is an error
+      if (want.imu_by_name || e.field() != "trajectory") throw;
+    }
   }
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
   opt.seed = a.seed;
-  opt.passes = passes;
+  opt.passes = renderPassesFor(passes, lens_type, want.boxes);
   opt.denoise = a.denoise;
 
   fs::path dir = fs::path(a.out) / scene.name / a.sequence;
@@ -290,10 +310,18 @@ void runGenerate(const GenerateArgs& a) {
   spec.lens = lens;
   spec.passes = passes;
   spec.rgb_exr = a.hdr;
+  spec.stereo_baseline_m = a.stereo;
   spec.meta = provenance(a, scene, opt, cam);
+  if (has(passes, Pass::DepthNoisy))
+    spec.meta["depth_noise"] = {{"model", "Kinect-like, sensors/depth_noise.h"},
+                                {"parameters", depth_noise.toString()}};
+  if (want.events) spec.meta["events"] = event_opt.sim.toString();
   SequenceWriter writer(spec, traj, formats);
 
-  if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate: IMU frame = camera frame");
+  if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
+  const Pose T_cam0_cam1{Quat::Identity(), Vec3(a.stereo, 0, 0)};
+  const std::vector<InstanceBox> boxes = want.boxes ? instanceBoxes(scene) : std::vector<InstanceBox>{};
+  std::vector<std::vector<InstanceVisibility>> visible(want.boxes ? traj.size() : 0);
   Renderer renderer(scene, opt.integrator);
   Shutter shutter;
   shutter.exposure_ns = static_cast<TimeNs>(std::llround(a.exposure_ms * 1e6));
@@ -309,8 +337,8 @@ void runGenerate(const GenerateArgs& a) {
     std::fprintf(stderr, "resuming: %zu of %zu frames already complete\n", skipped, traj.size());
 
   ProgressBar bar(static_cast<int64_t>(traj.size()), "frames", a.progress);
-  Frame frame;
-  ImageF shown;  // the colour after the camera response; frame.rgb stays linear (the EXR)
+  Frame frame, frame1;   // cam0, cam1
+  ImageF shown, shown1;  // the colour after the camera response; frame.rgb stays linear (EXR)
   size_t done = 0;
   for (size_t k = 0; k < traj.size(); ++k) {
     if (g_stop) {
@@ -320,16 +348,57 @@ void runGenerate(const GenerateArgs& a) {
                    traj.size());
       throw CLI::RuntimeError(130);
     }
+    const TimeNs scene_t = traj.poses[k].t_ns - traj.poses.front().t_ns;
     if (!complete[k]) {
-      renderer.render(lens, exposureAt(cam, k, shutter), opt, static_cast<uint32_t>(k), frame);
+      const auto idx = static_cast<uint32_t>(k);
       const bool respond = !a.response.identity() && has(passes, Pass::Rgb);
-      if (respond) shown = a.response.apply(frame.rgb, opt.seed, static_cast<uint32_t>(k));
-      writer.writeFrame(k, frame, respond ? &shown : nullptr);
+      std::optional<NextFrame> next;
+      if (k + 1 < traj.size())
+        next = NextFrame{traj.poses[k + 1].T_world_camera,
+                         traj.poses[k + 1].t_ns - traj.poses.front().t_ns};
+      renderer.render(lens, exposureAt(cam, k, shutter), opt, idx, frame);
+      deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, idx,
+                        traj.poses[k].T_world_camera, scene_t, next ? &*next : nullptr, frame);
+      if (respond) shown = a.response.apply(frame.rgb, opt.seed, idx);
+      if (a.stereo > 0) {
+        // cam1: every pose of the exposure moved by the baseline; its own random numbers
+        const uint32_t idx1 = idx | 0x80000000u;
+        CameraExposure ex1 = exposureAt(cam, k, shutter);
+        ex1.T_world_camera_open = ex1.T_world_camera_open * T_cam0_cam1;
+        ex1.T_world_camera_close = ex1.T_world_camera_close * T_cam0_cam1;
+        for (auto& [dt, pose] : ex1.knots) pose = pose * T_cam0_cam1;
+        std::optional<NextFrame> next1 = next;
+        if (next1) next1->T_world_camera = next1->T_world_camera * T_cam0_cam1;
+        renderer.render(lens, ex1, opt, idx1, frame1);
+        deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, idx1,
+                          traj.poses[k].T_world_camera * T_cam0_cam1, scene_t,
+                          next1 ? &*next1 : nullptr, frame1);
+        if (respond) shown1 = a.response.apply(frame1.rgb, opt.seed, idx1);
+      }
+      writer.writeFrame(k, frame, respond ? &shown : nullptr, a.stereo > 0 ? &frame1 : nullptr,
+                        respond && a.stereo > 0 ? &shown1 : nullptr);
+    } else if (want.boxes) {
+      // a frame a killed run finished: its instance image again (one ray per pixel)
+      RenderOptions ro;
+      ro.passes = static_cast<PassMask>(Pass::Instance);
+      renderer.render(lens, CameraExposure::fixed(traj.poses[k].T_world_camera, scene_t), ro, 0,
+                      frame);
     }
+    if (want.boxes) visible[k] = instanceVisibility(frame.instance);
     bar.update(static_cast<int64_t>(++done));
   }
   bar.finish();
   writer.finish();
+  if (want.boxes) writeTextAtomic(dir / "boxes.json", boxesJson(scene, boxes, traj, visible));
+  if (want.events) {
+    const TimeNs t0 = std::max(traj.poses.front().t_ns, spline->startNs());
+    const TimeNs t1 = std::min(traj.poses.back().t_ns, spline->endNs());
+    if (t1 <= t0)
+      throw InputError(cam.description, "--passes",
+                       "events need a camera path longer than one spline knot interval");
+    writeEventsFolder(dir, renderer, scene, lens.K, *spline, t0, t1, traj.poses.front().t_ns,
+                      event_opt, a.progress);
+  }
   std::printf("wrote %zu frames to %s\n", traj.size(), dir.string().c_str());
 }
 
@@ -350,9 +419,9 @@ void registerGenerate(CLI::App& app) {
                   "orbit for the built-in room, two-body for --layout");
   a->motion.addTo(*cmd);
   cmd->add_option("--imu", a->imu_rate,
-                  "also write imu0/ (EuRoC csv, noise-free stream, biases, sensor.yaml) at this "
-                  "rate in Hz, e.g. 800, from a B-spline through the camera path (IMU frame = "
-                  "camera frame); default 0 = none");
+                  "rate in Hz of imu0/ (EuRoC csv, noise-free stream, biases, sensor.yaml), from "
+                  "a B-spline through the camera path (IMU frame = camera frame); default 800; "
+                  "0 = no IMU");
   cmd->add_option("--imu-noise", a->imu_noise,
                   "none, euroc (ADIS16448, default) or a Kalibr/EuRoC imu yaml");
   cmd->add_option("--frames", a->frames,
@@ -366,8 +435,14 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--threads", a->threads,
                   "worker threads, 0 = all cores (default 0); never changes the output");
   cmd->add_option("--passes", a->passes,
-                  "comma list of rgb, depth, ray_depth, normal, label, instance, albedo, shading, "
-                  "or all (default all)");
+                  "comma list of frame passes (rgb, depth, ray_depth, normal, label, instance, "
+                  "albedo, shading, depth_noisy = Kinect-like depth, flow = forward optical flow) "
+                  "and sequence sensors (imu, events, boxes = boxes.json); 'default' = every "
+                  "frame pass, imu and boxes; 'all' = default and events (default: default)");
+  cmd->add_option("--stereo", a->stereo,
+                  "also render cam1, this many metres right of cam0 (same lens, every pass): "
+                  "cam1/, depth1/, ... with sensor.yaml T_BS (default 0 = mono)");
+  a->events.addTo(*cmd);
   cmd->add_option("--format", a->formats,
                   "comma list of output layouts: asl, tum (default asl,tum)");
   cmd->add_option("--width", a->K.width,

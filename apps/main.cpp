@@ -22,5 +22,6 @@ int main(int argc, char** argv) {
   inet::app::registerEval(app);
   inet::app::registerImu(app);
   inet::app::registerDepthNoise(app);
+  inet::app::registerEvents(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -10,6 +10,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcairo2-dev
   libtorch-dev
+  libhdf5-dev
+  libyaml-cpp-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -34,6 +34,14 @@ constexpr AslSensor kImageSensors[] = {
     {"label0",
      "interiornet label0, registered to cam0. <t>_nyu.png NYU40 class id (8-bit, 0 = void), "
      "<t>_instance.png instance id (16-bit, 0 = none); never anti-aliased"},
+    {"depth0_noisy",
+     "interiornet depth0_noisy, registered to cam0. Kinect-like z-depth (projector shadow, "
+     "grazing-angle, range and edge dropouts, lateral and axial noise after Nguyen et al. 2012, "
+     "1/8 px disparity steps) as 16-bit millimetres, 0 = no return"},
+    {"flow0",
+     "interiornet flow0, registered to cam0. Forward optical flow to the next frame (none for the "
+     "last), pixels. <t>.flo Middlebury float32 (1e10 = no surface), <t>.png KITTI 16-bit "
+     "(64 u + 32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = occluded in the next frame"},
 };
 
 // Layout of the EuRoC files in ../shared/data/formats/euroc_asl (comments, blank lines, the T_BS
@@ -46,6 +54,22 @@ constexpr const char* kIdentityTbs =
     "         0.0, 1.0, 0.0, 0.0,\n"
     "         0.0, 0.0, 1.0, 0.0,\n"
     "         0.0, 0.0, 0.0, 1.0]\n";
+
+}  // namespace
+
+std::string translationTbs(const Vec3& t) {
+  return fmt::format(
+      "T_BS:\n"
+      "  cols: 4\n"
+      "  rows: 4\n"
+      "  data: [1.0, 0.0, 0.0, {},\n"
+      "         0.0, 1.0, 0.0, {},\n"
+      "         0.0, 0.0, 1.0, {},\n"
+      "         0.0, 0.0, 0.0, 1.0]\n",
+      formatFloat(t.x()), formatFloat(t.y()), formatFloat(t.z()));
+}
+
+namespace {
 
 /// Nominal frame rate for rate_hz: 1 s over the median frame interval, to 3 decimals ("25" for
 /// 40 ms frames, robust to a jittered stamp); 0 for a single frame.
@@ -133,6 +157,24 @@ class AslWriter final : public FormatWriter {
     addOutput("shading0/data", ".png", srgbPng(Pass::Shading));
     addOutput("label0/data", "_nyu.png", rawPng(Pass::Label));
     addOutput("label0/data", "_instance.png", rawPng(Pass::Instance));
+    addOutput("depth0_noisy/data", ".png", depthPng(Pass::DepthNoisy, kDepthScaleMm));
+    addOutput("flow0/data", ".flo", flowFlo());
+    addOutput("flow0/data", ".png", flowKittiPng());
+    addOutput("flow0/data", "_occ.png", flowOcclusionPng());
+    if (ctx().spec.stereo_baseline_m > 0) {
+      // cam1 writes every output of cam0 into the twin folder (cam0 -> cam1, depth0 -> depth1)
+      const std::vector<FrameOutput> left = outputs();
+      for (const FrameOutput& o : left) addOutput(rightFolder(o.folder), o.suffix, o.encoder, 1);
+    }
+  }
+
+  /// The stereo twin of a cam0 folder: its sensor number 0 -> 1 ("depth0_noisy/data" ->
+  /// "depth1_noisy/data").
+  static std::string rightFolder(std::string folder) {
+    const size_t zero = folder.find('0');
+    INET_CHECK(zero != std::string::npos);
+    folder[zero] = '1';
+    return folder;
   }
 
   std::string name() const override { return "asl"; }
@@ -143,17 +185,21 @@ class AslWriter final : public FormatWriter {
     writeTextAtomic(dir / "body.yaml",
                     "comment: interiornet virtual camera rig; body frame B = cam0 frame "
                     "(x right, y down, z forward)\n");
-    for (const auto& sensor : kImageSensors) {
-      // data.csv lists the first file of each frame in this folder (e.g. the depth PNG; the
-      // .exr or _instance.png sibling has the same <t>).
-      const std::string data_folder = std::string(sensor.folder) + "/data";
-      for (const auto& o : outputs()) {
-        if (o.folder != data_folder) continue;
-        writeTextAtomic(dir / sensor.folder / "data.csv", cameraCsv(o.suffix));
-        writeTextAtomic(dir / sensor.folder / "sensor.yaml", cameraYaml(sensorComment(sensor)));
-        break;
+    for (int camera = 0; camera < (ctx().spec.stereo_baseline_m > 0 ? 2 : 1); ++camera)
+      for (const auto& sensor : kImageSensors) {
+        // data.csv lists the first file of each frame in this folder (e.g. the depth PNG; the
+        // .exr or _instance.png sibling has the same <t>).
+        const std::string folder =
+            camera == 0 ? std::string(sensor.folder) : rightFolder(sensor.folder);
+        for (const auto& o : outputs()) {
+          if (o.folder != folder + "/data") continue;
+          writeTextAtomic(dir / folder / "data.csv",
+                          cameraCsv(o.suffix, o.needs_next_frame ? 1 : 0));
+          writeTextAtomic(dir / folder / "sensor.yaml",
+                          cameraYaml(sensorComment(sensor, camera), camera));
+          break;
+        }
       }
-    }
     writeTextAtomic(dir / "state_groundtruth_estimate0" / "data.csv", groundTruthCsv());
     writeTextAtomic(dir / "state_groundtruth_estimate0" / "sensor.yaml", groundTruthYaml());
   }
@@ -166,6 +212,19 @@ class AslWriter final : public FormatWriter {
   }
 
   /// The comment of a folder whose files depend on the lens or on the options.
+  std::string sensorComment(const AslSensor& sensor, int camera) const {
+    std::string c = sensorComment(sensor);
+    if (camera == 0) return c;
+    // the right camera's folders name themselves and are registered to cam1
+    for (const std::string from : {std::string(sensor.folder), std::string("cam0")}) {
+      const std::string to = rightFolder(from);
+      for (size_t at = 0; (at = c.find(from, at)) != std::string::npos; at += to.size())
+        c.replace(at, from.size(), to);
+    }
+    return c + fmt::format(" (stereo right camera, {} m right of cam0)",
+                           formatFloat(ctx().spec.stereo_baseline_m));
+  }
+
   std::string sensorComment(const AslSensor& sensor) const {
     const std::string folder = sensor.folder;
     if (folder == "cam0") {
@@ -185,21 +244,24 @@ class AslWriter final : public FormatWriter {
            "depth (camera centre to surface) in metres, float channel Z, 0 = no depth";
   }
 
-  std::string cameraCsv(const std::string& suffix) const {
+  /// data.csv of a folder: one row per frame (the last `drop_last` frames have no file).
+  std::string cameraCsv(const std::string& suffix, size_t drop_last = 0) const {
     std::string s = std::string(kEurocCameraCsvHeader) + "\n";
-    for (size_t k = 0; k < ctx().traj.size(); ++k) {
+    for (size_t k = 0; k + drop_last < ctx().traj.size(); ++k) {
       const std::string stem = frameStem(k);
       s += stem + "," + stem + suffix + "\n";
     }
     return s;
   }
 
-  std::string cameraYaml(const std::string& comment) const {
+  std::string cameraYaml(const std::string& comment, int camera = 0) const {
     const CameraIntrinsics& K = ctx().spec.intrinsics;
     return fmt::format(
                "# General sensor definitions.\nsensor_type: camera\ncomment: {}\n\n"
                "# Sensor extrinsics wrt. the body-frame.\n{}\n",
-               comment, kIdentityTbs) +
+               comment,
+               camera == 0 ? std::string(kIdentityTbs)
+                           : translationTbs(Vec3(ctx().spec.stereo_baseline_m, 0, 0))) +
            fmt::format("# Camera specific definitions.\nrate_hz: {}\nresolution: [{}, {}]\n",
                        rateText(ctx().traj), K.width, K.height) +
            lensYaml(ctx().lens()) + "\n";

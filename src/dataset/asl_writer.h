@@ -11,6 +11,9 @@
 //   albedo0/data/<t>.png     sensor.yaml data.csv   diffuse albedo, 8-bit sRGB RGB
 //   label0/data/<t>_nyu.png  sensor.yaml data.csv   NYU40 class, 8-bit grey
 //   label0/data/<t>_instance.png                    instance id, 16-bit grey
+//   depth0_noisy/data/<t>.png sensor.yaml data.csv  Kinect-like z-depth, mm
+//   flow0/data/<t>.flo .png _occ.png  sensor.yaml data.csv   forward flow (not the last frame)
+//   cam1/ depth1/ ... label1/ ...                   with spec.stereo_baseline_m: cam1's twins
 //   state_groundtruth_estimate0/data.csv sensor.yaml   17-column EuRoC ground truth
 //
 // <t> is the frame time in integer nanoseconds, zero-padded to 19 digits (EuRoC's width), used
@@ -38,6 +41,10 @@ inline constexpr const char* kEurocGroundTruthCsvHeader =
 
 /// "0000000001403715273" style stem: nanoseconds zero-padded to 19 digits (t_ns >= 0).
 std::string aslStamp(TimeNs t_ns);
+
+/// A sensor.yaml T_BS block (sensor -> body) for a sensor translated by t from the body frame,
+/// same orientation; EuRoC's layout ("T_BS:", cols, rows, data in 4 rows).
+std::string translationTbs(const Vec3& t);
 
 /// Factory registered as "asl".
 std::unique_ptr<FormatWriter> makeAslWriter(std::shared_ptr<const SequenceContext> ctx);

@@ -10,6 +10,7 @@
 #include "dataset/image_encode.h"
 #include "core/image_io.h"
 #include "dataset/tum_writer.h"
+#include "sensors/flow_io.h"
 
 namespace fs = std::filesystem;
 
@@ -42,6 +43,8 @@ const ImageF Frame::*floatMember(Pass pass) {
       return &Frame::albedo;
     case Pass::Shading:
       return &Frame::shading;
+    case Pass::DepthNoisy:
+      return &Frame::depth_noisy;
     default:
       break;
   }
@@ -75,13 +78,17 @@ Pass SequenceContext::depthPngPass() const {
 std::vector<fs::path> FormatWriter::frameFiles(size_t k) const {
   std::vector<fs::path> files;
   const std::string stem = frameStem(k);
-  for (const auto& o : outputs_) files.push_back(ctx_->spec.dir / o.folder / (stem + o.suffix));
+  for (const auto& o : outputs_)
+    if (o.writtenFor(k, ctx_->traj.size()))
+      files.push_back(ctx_->spec.dir / o.folder / (stem + o.suffix));
   return files;
 }
 
-void FormatWriter::addOutput(std::string folder, std::string suffix, FrameEncoder encoder) {
+void FormatWriter::addOutput(std::string folder, std::string suffix, FrameEncoder encoder,
+                             int camera) {
   if (!has(ctx_->spec.passes, encoder.pass)) return;
-  outputs_.push_back({std::move(folder), std::move(suffix), std::move(encoder)});
+  const bool next = encoder.pass == Pass::Flow;
+  outputs_.push_back({std::move(folder), std::move(suffix), std::move(encoder), camera, next});
 }
 
 std::vector<std::string> formatNames() {
@@ -165,6 +172,31 @@ FrameEncoder rawPng(Pass pass) {
     return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.label); }};
   INET_CHECK_MSG(pass == Pass::Instance, "rawPng takes the label or instance pass");
   return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.instance); }};
+}
+
+namespace {
+/// The flow pass of a frame as a FlowField (copies: the files' writers take that type).
+FlowField flowOf(const Frame& f) {
+  return FlowField{f.flow, f.flow_valid, f.flow_occluded};
+}
+}  // namespace
+
+FrameEncoder flowFlo() {
+  return {Pass::Flow, "flo/flow",
+          [](const fs::path& p, const FrameView& v) { writeFlo(p, flowOf(v.frame)); }};
+}
+
+FrameEncoder flowKittiPng() {
+  return {Pass::Flow, "png16-kitti/flow",
+          [](const fs::path& p, const FrameView& v) { writeKittiFlowPng(p, flowOf(v.frame)); }};
+}
+
+FrameEncoder flowOcclusionPng() {
+  return {Pass::Flow, "png8-occlusion/flow", [](const fs::path& p, const FrameView& v) {
+            ImageU8 mask = v.frame.flow_occluded;
+            for (uint8_t& m : mask.data) m = m ? 255 : 0;
+            writePng(p, mask);
+          }};
 }
 
 std::string formatFixed(double v, int decimals) {

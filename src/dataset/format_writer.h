@@ -36,13 +36,17 @@ struct SequenceSpec {
   /// hold: z-depth for pinhole and thin lens, the Euclidean ray distance for fisheye and
   /// panorama, whose frames carry the ray_depth pass instead of depth (docs/cameras.md 4).
   std::optional<LensModel> lens;
-  PassMask passes = kAllPasses;  ///< passes written to disk (the frames must carry them)
+  PassMask passes = kRenderPasses;  ///< passes written to disk (the frames must carry them)
   /// Also write the rgb pass (frame.rgb, linear radiance before any camera response) as a
   /// float32 EXR with channels R, G, B next to the colour PNG (ASL cam0/data/<t>.exr).
   bool rgb_exr = false;
   /// Caller's provenance (seed, versions, settings), merged into meta.json. Must be an object and
   /// must not use the writer's own keys (docs/output.md section 6); doing so is a bug (aborts).
   nlohmann::json meta = nlohmann::json::object();
+  /// > 0: a second camera (cam1, the right one of a stereo pair) at this distance in metres along
+  /// cam0's x axis (T_cam0_cam1 = translation (b, 0, 0)), same lens, rendered with every pass;
+  /// formats that know stereo (asl) write its images as <folder with 0 -> 1>.
+  double stereo_baseline_m = 0.0;
   /// Delete "*.tmp-*" left by a killed run when the writer is created. With several processes
   /// writing one folder at once (MPI ranks), only one of them may do this.
   bool remove_stale_temporaries = true;
@@ -82,6 +86,11 @@ struct FrameOutput {
   std::string folder;  ///< relative to the sequence folder, e.g. "cam0/data"
   std::string suffix;  ///< e.g. ".png", "_nyu.png", ".exr"
   FrameEncoder encoder;
+  int camera = 0;  ///< 0 = cam0's frame, 1 = the stereo cam1's frame
+  /// Every frame but the last (forward flow: frame k -> k + 1 needs a next frame).
+  bool needs_next_frame = false;
+  /// Is this output written for frame k of n?
+  bool writtenFor(size_t k, size_t n) const { return !needs_next_frame || k + 1 < n; }
 };
 
 class FormatWriter {
@@ -106,8 +115,8 @@ class FormatWriter {
 
  protected:
   const SequenceContext& ctx() const { return *ctx_; }
-  /// Adds an output if its encoder's pass is in spec.passes.
-  void addOutput(std::string folder, std::string suffix, FrameEncoder encoder);
+  /// Adds an output if its encoder's pass is in spec.passes (flow: for every frame but the last).
+  void addOutput(std::string folder, std::string suffix, FrameEncoder encoder, int camera = 0);
 
  private:
   std::shared_ptr<const SequenceContext> ctx_;
@@ -136,6 +145,13 @@ FrameEncoder depthPng(Pass pass, double scale);  ///< DepthZ, DepthRay: 16-bit P
 FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names);  ///< float32 EXR
 FrameEncoder normalPng(Pass pass);  ///< Normal: 16-bit RGB PNG, see encodeNormal16
 FrameEncoder rawPng(Pass pass);     ///< Label (8-bit), Instance (16-bit): as stored
+/// Flow: Middlebury .flo (float32 u, v; no surface = 1e10, "unknown")
+FrameEncoder flowFlo();
+/// Flow: KITTI 16-bit RGB PNG (64 u + 2^15, 64 v + 2^15, valid); |flow| >= 512 px clamps
+FrameEncoder flowKittiPng();
+/// Flow: occlusion mask, 8-bit grey: 255 = hidden in frame k + 1 or leaves its image, 0 = seen
+/// in both or no surface
+FrameEncoder flowOcclusionPng();
 
 /// Fixed-point text with `decimals` digits; never "-0.000" (a tiny negative prints as zero).
 std::string formatFixed(double v, int decimals);

@@ -22,8 +22,10 @@ using nlohmann::json;
 namespace inet {
 namespace {
 
-constexpr Pass kAllPassList[] = {Pass::Rgb,   Pass::DepthZ,   Pass::DepthRay, Pass::Normal,
-                                 Pass::Label, Pass::Instance, Pass::Albedo,   Pass::Shading};
+constexpr Pass kAllPassList[] = {Pass::Rgb,      Pass::DepthZ,  Pass::DepthRay,
+                                 Pass::Normal,   Pass::Label,   Pass::Instance,
+                                 Pass::Albedo,   Pass::Shading, Pass::DepthNoisy,
+                                 Pass::Flow};
 
 void validateTrajectory(const Trajectory& traj) {
   if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
@@ -68,7 +70,8 @@ void checkImage(const Image<T>& img, Pass pass, int channels, const CameraIntrin
 /// A frame that does not match the spec is a caller bug (the renderer was asked for these
 /// passes at this size), not bad user input.
 void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const CameraIntrinsics& K,
-                size_t k) {
+                size_t k, bool last) {
+  if (last) mask &= ~static_cast<PassMask>(Pass::Flow);  // no next frame, no forward flow
   for (Pass p : kAllPassList)
     INET_CHECK_MSG(
         !has(mask, p) || has(f.passes, p),
@@ -84,6 +87,12 @@ void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const 
   if (has(mask, Pass::Instance)) checkImage(f.instance, Pass::Instance, 1, K, k);
   if (has(mask, Pass::Albedo)) checkImage(f.albedo, Pass::Albedo, 3, K, k);
   if (has(mask, Pass::Shading)) checkImage(f.shading, Pass::Shading, 3, K, k);
+  if (has(mask, Pass::DepthNoisy)) checkImage(f.depth_noisy, Pass::DepthNoisy, 1, K, k);
+  if (has(mask, Pass::Flow)) {
+    checkImage(f.flow, Pass::Flow, 2, K, k);
+    checkImage(f.flow_valid, Pass::Flow, 1, K, k);
+    checkImage(f.flow_occluded, Pass::Flow, 1, K, k);
+  }
 }
 
 bool sameIntrinsics(const CameraIntrinsics& a, const CameraIntrinsics& b) {
@@ -209,6 +218,17 @@ json encodingsJson(const SequenceContext& c) {
        "T_world_camera: camera x right, y down, z forward (OpenCV); world right-handed, "
        "z up, metres; quaternions Hamilton with w >= 0"},
   };
+  if (has(c.spec.passes, Pass::DepthNoisy))
+    j["depth_noisy_png"] =
+        "Kinect-like z-depth (sensors/depth_noise.h; parameters in meta.json depth_noise), uint16 "
+        "millimetres, 0 = no return (shadow, grazing angle, edge, out of range)";
+  if (has(c.spec.passes, Pass::Flow))
+    j["flow"] =
+        "forward optical flow frame k -> k + 1 in pixels (x right, y down), for every frame but "
+        "the last, from the exact depth, both camera poses and the objects' motion: <t>.flo "
+        "Middlebury (float32 u, v; 1e10 = no surface), <t>.png KITTI (uint16 RGB = 64 u + "
+        "32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = hidden in frame k + 1 or "
+        "outside its image";
   if (c.spec.rgb_exr)
     j["rgb_exr"] =
         "asl cam0/data/<t>.exr: linear RGB radiance as rendered (before exposure, sensor noise, "
@@ -257,6 +277,8 @@ SequenceWriter::SequenceWriter(SequenceSpec spec, const Trajectory& traj,
   validateLens(spec);
   if (spec.rgb_exr && !has(spec.passes, Pass::Rgb))
     throw InputError("", "--hdr", "needs the rgb pass in --passes");
+  if (!(spec.stereo_baseline_m >= 0 && spec.stereo_baseline_m <= 10))
+    throw InputError("", "--stereo", "the baseline must be in 0..10 m");
   ctx_ = std::make_shared<const SequenceContext>(SequenceContext{std::move(spec), traj});
   bool rgb_exr_written = false;
   for (const auto& name : formats) {
@@ -316,30 +338,41 @@ bool SequenceWriter::frameComplete(size_t k) const {
   return true;
 }
 
-void SequenceWriter::writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display) const {
+void SequenceWriter::writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display,
+                                const Frame* right, const ImageF* right_display) const {
   INET_CHECK_MSG(k < frameCount(), fmt::format("frame {} of {}", k, frameCount()));
+  const bool last = k + 1 == frameCount();
   const FrameView view{frame, rgb_display ? *rgb_display : frame.rgb};
-  checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k);
+  checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, last);
+  const bool stereo = ctx_->spec.stereo_baseline_m > 0;
+  INET_CHECK_MSG(stereo == (right != nullptr),
+                 "writeFrame takes cam1's frame exactly when the spec has a stereo baseline");
+  const FrameView right_view{right ? *right : frame,
+                             right_display ? *right_display : (right ? right->rgb : frame.rgb)};
+  if (right)
+    checkFrame(*right, right_view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, last);
   // One job per distinct encoding: outputs with the same key (ASL cam0 and TUM rgb) are encoded
   // once and the other names get a hard link or a copy of the finished file.
   struct Job {
     const FrameEncoder* encoder;
+    int camera;
     std::vector<fs::path> paths;
   };
   std::vector<Job> jobs;
-  std::map<std::string, size_t> by_key;
+  std::map<std::pair<int, std::string>, size_t> by_key;
   for (const auto& f : formats_) {
     const std::string stem = f->frameStem(k);
     for (const auto& o : f->outputs()) {
-      auto [it, fresh] = by_key.emplace(o.encoder.key, jobs.size());
-      if (fresh) jobs.push_back({&o.encoder, {}});
+      if (!o.writtenFor(k, frameCount())) continue;
+      auto [it, fresh] = by_key.emplace(std::pair(o.camera, o.encoder.key), jobs.size());
+      if (fresh) jobs.push_back({&o.encoder, o.camera, {}});
       jobs[it->second].paths.push_back(ctx_->spec.dir / o.folder / (stem + o.suffix));
     }
   }
   // Jobs are independent: run them in parallel (TBB rethrows the first exception here).
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t i) {
     const Job& job = jobs[i];
-    job.encoder->write(job.paths[0], view);
+    job.encoder->write(job.paths[0], job.camera == 1 ? right_view : view);
     for (size_t j = 1; j < job.paths.size(); ++j) linkOrCopy(job.paths[0], job.paths[j]);
   });
 }
@@ -377,6 +410,11 @@ std::string SequenceWriter::metaJson() const {
   put("camera", cameraJson(c.lens()));
   put("lens", lensJson(c.lens()));
   put("encodings", encodingsJson(c));
+  if (c.spec.stereo_baseline_m > 0)
+    put("stereo", {{"baseline_m", c.spec.stereo_baseline_m},
+                   {"T_cam0_cam1",
+                    "translation (baseline_m, 0, 0): cam1 is right of cam0, same orientation and "
+                    "lens; its images are in the folders of cam0's with 0 -> 1 (cam1, depth1, ...)"}});
   return j.dump(2) + "\n";
 }
 

@@ -55,7 +55,10 @@ class SequenceWriter {
   /// aborts). frame.rgb is linear radiance (what spec.rgb_exr writes); `rgb_display`, if given,
   /// is the same image after the camera response (exposure, noise, tone curve), which the 8-bit
   /// colour PNGs encode instead of frame.rgb. File errors throw InputError naming the file.
-  void writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display = nullptr) const;
+  /// With spec.stereo_baseline_m > 0, `right` (and `right_display`, as rgb_display) is cam1's
+  /// frame, which must then be given; the flow pass is not expected in the last frame.
+  void writeFrame(size_t k, const Frame& frame, const ImageF* rgb_display = nullptr,
+                  const Frame* right = nullptr, const ImageF* right_display = nullptr) const;
   /// Writes the index, list and calibration files of every format, atomically. Call once after
   /// all frames; throws InputError naming the first missing frame file if a frame is incomplete.
   void finish() const;

@@ -15,7 +15,8 @@ struct PassEntry {
 constexpr PassEntry kPasses[] = {
     {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},    {Pass::DepthRay, "ray_depth"},
     {Pass::Normal, "normal"}, {Pass::Label, "label"},     {Pass::Instance, "instance"},
-    {Pass::Albedo, "albedo"}, {Pass::Shading, "shading"},
+    {Pass::Albedo, "albedo"}, {Pass::Shading, "shading"}, {Pass::DepthNoisy, "depth_noisy"},
+    {Pass::Flow, "flow"},
 };
 }  // namespace
 

@@ -21,9 +21,16 @@ enum class Pass : uint32_t {
   Albedo = 1u << 6,    ///< linear diffuse reflectance ("pure texture"), 3 x float
   Shading = 1u << 7,   ///< illumination only: rgb / albedo per channel (the paper's "shading"
                        ///< RGB variation), 3 x float; derived from the RGB pass, not exact
+  // Derived by the sensor stage from the passes above (the renderer ignores these bits):
+  DepthNoisy = 1u << 8,  ///< Kinect-like z-depth (sensors/depth_noise.h), metres, 0 = no return
+  Flow = 1u << 9,        ///< forward optical flow to the next frame (sensors/optical_flow.h):
+                         ///< flow (2 x float, px), flow_valid and flow_occluded (1 x uint8)
 };
 using PassMask = uint32_t;
-constexpr PassMask kAllPasses = 0xff;
+/// What the renderer makes: RGB, the exact ground truth and shading.
+constexpr PassMask kRenderPasses = 0xff;
+/// Every pass, the derived ones included.
+constexpr PassMask kAllPasses = 0x3ff;
 /// The exact passes: one ray through each pixel centre (everything but rgb and shading).
 constexpr PassMask kGroundTruthPasses = 0x7e;
 inline bool has(PassMask m, Pass p) {
@@ -31,7 +38,7 @@ inline bool has(PassMask m, Pass p) {
 }
 
 /// Name of a pass as used on the command line ("rgb", "depth", "ray_depth", "normal", "label",
-/// "instance", "albedo").
+/// "instance", "albedo", "shading", "depth_noisy", "flow").
 std::string passName(Pass p);
 /// Parses "rgb,depth,..." or "all" into a mask; throws InputError(where, "--passes", ...).
 PassMask parsePassList(const std::string& list, const std::string& where);
@@ -46,6 +53,10 @@ struct Frame {
   ImageU16 instance;  ///< 1 channel
   ImageF albedo;      ///< 3 channels
   ImageF shading;     ///< 3 channels
+  ImageF depth_noisy;     ///< 1 channel, metres, 0 = no return
+  ImageF flow;            ///< 2 channels (u, v), pixels, frame k -> k + 1
+  ImageU8 flow_valid;     ///< 1 channel, 1 = a surface whose point has an image in frame k + 1
+  ImageU8 flow_occluded;  ///< 1 channel, 1 = hidden in frame k + 1 or leaves its image
 };
 
 }  // namespace inet

@@ -25,7 +25,7 @@ struct RenderOptions {
   int spp = 16;         ///< samples per pixel for the RGB pass
   int max_bounces = 8;  ///< scattering events per path (1 = direct light only)
   uint64_t seed = 0;    ///< global seed of the counter-based RNG
-  PassMask passes = kAllPasses;
+  PassMask passes = kRenderPasses;
   std::string integrator = "path";
   bool denoise = false;  ///< edge-aware denoising of the RGB pass (never of ground truth)
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7

@@ -270,6 +270,9 @@ std::string formatImuBiasCsv(const std::vector<ImuSample>& samples,
 }
 
 std::string formatImuSensorYaml(const ImuOptions& opt, const std::string& comment) {
+  // the comment is written as a YAML plain scalar
+  INET_CHECK_MSG(comment.find(": ") == std::string::npos && comment.find(" #") == std::string::npos,
+                 "an IMU sensor.yaml comment must not contain ': ' or ' #': " + comment);
   const Mat4 T = opt.T_cam_imu.matrix();
   std::string rows;
   for (int r = 0; r < 4; ++r)

@@ -185,7 +185,7 @@ TEST_F(AslWriterTest, ImagesDecodeToTheEncodedPasses) {
 
 // ---- lenses other than the pinhole ----------------------------------------------------------
 
-constexpr PassMask kRayDepthPasses = kAllPasses & ~static_cast<PassMask>(Pass::DepthZ);
+constexpr PassMask kRayDepthPasses = kRenderPasses & ~static_cast<PassMask>(Pass::DepthZ);
 
 /// Writes the synthetic sequence through `lens` (its K is the image) with the given formats.
 void writeWithLens(const fs::path& dir, const LensModel& lens, PassMask passes,
@@ -264,7 +264,7 @@ TEST(AslWriterLens, PanoramaIsEquirectangularWithoutKalibrFields) {
 
 TEST(AslWriterLens, ThinLensStatesApertureAndFocusBesideThePinhole) {
   TempDir tmp("asl_thin");
-  writeWithLens(tmp / "seq", LensModel::thinLens(smallCamera(), 0.004, 1.25), kAllPasses);
+  writeWithLens(tmp / "seq", LensModel::thinLens(smallCamera(), 0.004, 1.25), kRenderPasses);
   const fs::path yaml = tmp / "seq/cam0/sensor.yaml";
   EXPECT_TRUE(hasLine(yaml, "camera_model: pinhole"));
   EXPECT_TRUE(hasLine(yaml, "distortion_model: radial-tangential"));
@@ -279,7 +279,7 @@ TEST(AslWriterLens, ThinLensStatesApertureAndFocusBesideThePinhole) {
 TEST(AslWriterLens, ZDepthPassIsRefusedForFisheyeAndPanorama) {
   for (const LensModel& lens : {LensModel::fisheye(16), LensModel::panorama(32, 16)}) {
     TempDir tmp("asl_nodepth");
-    SequenceSpec spec = syntheticSpec(tmp / "seq", kAllPasses);
+    SequenceSpec spec = syntheticSpec(tmp / "seq", kRenderPasses);
     spec.intrinsics = lens.K;
     spec.lens = lens;
     try {

@@ -65,7 +65,7 @@ inline int depthCode5000(int x, int y, int k) {
 /// A frame with every pass, deterministic in (x, y, k).
 inline Frame syntheticFrame(const CameraIntrinsics& K, int k) {
   Frame f;
-  f.passes = kAllPasses;
+  f.passes = kRenderPasses;
   f.rgb = ImageF(K.width, K.height, 3);
   f.albedo = ImageF(K.width, K.height, 3);
   f.shading = ImageF(K.width, K.height, 3, 0.25f);
@@ -112,7 +112,7 @@ inline Trajectory syntheticTrajectory(int frames = 3) {
   return traj;
 }
 
-inline SequenceSpec syntheticSpec(const fs::path& dir, PassMask passes = kAllPasses) {
+inline SequenceSpec syntheticSpec(const fs::path& dir, PassMask passes = kRenderPasses) {
   SequenceSpec spec;
   spec.dir = dir;
   spec.intrinsics = smallCamera();
@@ -123,7 +123,7 @@ inline SequenceSpec syntheticSpec(const fs::path& dir, PassMask passes = kAllPas
 
 /// Writes the synthetic sequence (all frames, then finish) and returns the frame count.
 inline size_t writeSyntheticSequence(const fs::path& dir, const std::vector<std::string>& formats,
-                                     PassMask passes = kAllPasses) {
+                                     PassMask passes = kRenderPasses) {
   Trajectory traj = syntheticTrajectory();
   SequenceWriter w(syntheticSpec(dir, passes), traj, formats);
   for (size_t k = 0; k < w.frameCount(); ++k)

@@ -1,0 +1,235 @@
+#include "sensor_outputs.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/progress.h"
+#include "dataset/asl_writer.h"
+#include "render/renderer.h"
+#include "sensors/event_io.h"
+#include "sensors/optical_flow.h"
+
+namespace inet::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr PassMask bit(Pass p) {
+  return static_cast<PassMask>(p);
+}
+
+}  // namespace
+
+SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool rolling_shutter) {
+  const bool pinhole = lens == LensType::Pinhole;
+  const bool events_ok = lens == LensType::Pinhole || lens == LensType::ThinLens;
+  SequencePasses out;
+  std::vector<std::string> frame_names;
+  bool everything = false, standard = false;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    if (item == "all") {
+      everything = true;
+    } else if (item == "default") {
+      standard = true;
+    } else if (item == "imu") {
+      out.imu = out.imu_by_name = true;
+    } else if (item == "boxes") {
+      out.boxes = true;
+    } else if (item == "events") {
+      if (!events_ok)
+        throw InputError("", "--passes",
+                         "events need a pinhole or thin lens (the event camera is a pinhole "
+                         "with cam0's field of view)");
+      out.events = true;
+    } else {
+      frame_names.push_back(item);
+    }
+  }
+  if (everything || standard) {
+    out.frame = kAllPasses;
+    if (!pinhole) out.frame &= ~bit(Pass::DepthNoisy);
+    if (rolling_shutter) out.frame &= ~bit(Pass::Flow);
+    out.imu = out.boxes = true;
+    out.events |= everything && events_ok;
+  }
+  if (!frame_names.empty()) {
+    std::string joined;
+    for (const auto& n : frame_names) joined += (joined.empty() ? "" : ",") + n;
+    try {
+      out.frame |= parsePassList(joined, "");
+    } catch (const InputError& e) {
+      throw InputError("", "--passes",
+                       e.problem() + "; also: imu, events, boxes, default (all but events)");
+    }
+    if (has(out.frame, Pass::DepthNoisy) && !pinhole)
+      throw InputError("", "--passes",
+                       "depth_noisy needs --lens pinhole (the Kinect model is a pinhole "
+                       "projector and camera)");
+    if (has(out.frame, Pass::Flow) && rolling_shutter)
+      throw InputError("", "--passes",
+                       "flow with a rolling shutter (--readout-ms) is not supported: the rows of "
+                       "a frame see different poses");
+  }
+  if (out.frame == 0 && !out.imu && !out.events && !out.boxes)
+    throw InputError("", "--passes", "no pass selected");
+  return out;
+}
+
+void EventArgs::addTo(CLI::App& cmd) {
+  cmd.add_option("--event-width", opt.width, "event camera width in pixels (default 240, DAVIS240)");
+  cmd.add_option("--event-height", opt.height, "event camera height in pixels (default 180)");
+  cmd.add_option("--event-spp", opt.spp,
+                 "path-traced samples per pixel of each event-camera sample (default 16)");
+  cmd.add_option("--contrast", contrast,
+                 "ON and OFF contrast thresholds in log intensity (default 0.2, as v2e)");
+  cmd.add_option("--contrast-sigma", opt.sim.sigma_c,
+                 "threshold noise per pixel and interval, std (default 0.021, ESIM)");
+  cmd.add_option("--refractory-ms", refractory_ms,
+                 "refractory period per pixel in ms (default 0, ESIM; v2e uses 0.5)");
+  cmd.add_option("--event-noise", opt.sim.shot_noise_rate_hz,
+                 "shot-noise events per pixel and second (default 0 = none; v2e 0.001)");
+}
+
+EventCameraOptions EventArgs::options(uint64_t seed) const {
+  EventCameraOptions o = opt;
+  if (!(contrast >= kMinContrastThreshold && contrast <= 10))
+    throw InputError("", "--contrast", fmt::format("must be in [{}, 10]", kMinContrastThreshold));
+  o.sim.c_pos = o.sim.c_neg = contrast;
+  if (!(refractory_ms >= 0 && refractory_ms <= 1000))
+    throw InputError("", "--refractory-ms", "must be in 0..1000");
+  o.sim.refractory_ns = static_cast<int64_t>(std::llround(refractory_ms * 1e6));
+  o.seed = seed;
+  o.sim.seed = seed;
+  o.lambda_brightness = std::min(o.lambda_brightness, contrast / 2);
+  try {
+    o.validate();
+  } catch (const InputError& e) {  // the simulator names its own fields; ours are --contrast
+    if (e.field() == "--contrast-pos" || e.field() == "--contrast-neg")
+      throw InputError("", "--contrast", e.problem());
+    throw;
+  }
+  return o;
+}
+
+PassMask renderPassesFor(PassMask passes, LensType lens, bool boxes) {
+  PassMask r = passes & kRenderPasses;
+  if (has(passes, Pass::DepthNoisy)) r |= bit(Pass::DepthZ) | bit(Pass::Normal);
+  if (has(passes, Pass::Flow))
+    r |= bit(groundTruthDepthKind(lens) == DepthKind::ZDepth ? Pass::DepthZ : Pass::DepthRay) |
+         bit(Pass::Instance);
+  if (boxes) r |= bit(Pass::Instance);
+  return r;
+}
+
+void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensModel& lens,
+                       PassMask passes, const KinectNoiseOptions& noise, uint64_t seed,
+                       uint32_t noise_frame, const Pose& T_world_camera, TimeNs scene_time_ns,
+                       const NextFrame* next, Frame& frame) {
+  if (has(passes, Pass::DepthNoisy)) {
+    frame.depth_noisy = kinectNoisyDepth(frame.depth_z, frame.normal, lens.K, noise, seed,
+                                         noise_frame);
+    frame.passes |= bit(Pass::DepthNoisy);
+  }
+  if (!has(passes, Pass::Flow) || next == nullptr) return;
+  FlowOptions fo;
+  fo.depth_kind = groundTruthDepthKind(lens.type);
+  const bool z = fo.depth_kind == DepthKind::ZDepth;
+  const PassMask gt = bit(z ? Pass::DepthZ : Pass::DepthRay) | bit(Pass::Instance);
+  Frame after;
+  RenderOptions ro;  // ground truth only (no rgb): one ray per pixel, objects at the next time
+  ro.passes = gt;
+  renderer.render(lens, CameraExposure::fixed(next->T_world_camera, next->scene_time_ns), ro, 0,
+                  after);
+  const ObjectMotion motion = objectMotionBetween(scene, scene_time_ns * 1e-9,
+                                                  next->scene_time_ns * 1e-9, scene.name);
+  const FlowFrameView from{z ? frame.depth_z : frame.depth_ray, frame.instance, T_world_camera};
+  const FlowFrameView to{z ? after.depth_z : after.depth_ray, after.instance,
+                         next->T_world_camera};
+  FlowField f = forwardFlow(from, to, lens, motion, fo);
+  frame.flow = std::move(f.flow);
+  frame.flow_valid = std::move(f.valid);
+  frame.flow_occluded = std::move(f.occluded);
+  frame.passes |= bit(Pass::Flow);
+}
+
+bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scene& scene,
+                       const CameraIntrinsics& K_cam0, const PoseSpline& spline, TimeNs t_begin_ns,
+                       TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
+                       bool progress) {
+  const fs::path out = dir / "events0";
+  std::error_code ec;
+  if (fs::is_regular_file(out / "sensor.yaml", ec)) return false;
+  fs::create_directories(out / "frames" / "data", ec);
+  if (ec) throw InputError(out.string(), "--out", "cannot create folder: " + ec.message());
+  const CameraIntrinsics K = eventIntrinsics(K_cam0, opt.width, opt.height);
+  EventCameraOptions o = opt;
+  for (const Object& obj : scene.objects) o.brightness_criterion |= obj.moving();
+  // times in the files: from the first frame (RPG) / t_offset = first frame in us (DSEC)
+  EventTextWriter txt(out / "events.txt", scene_t0_ns);
+  EventH5Writer h5(out / "events.h5", scene_t0_ns, K.width, K.height);
+  std::string csv = "#timestamp [ns],filename\n";
+  ProgressBar bar(1000, "permille of event time", progress);
+  const EventRunStats stats = simulateEventCamera(
+      renderer, K, spline, t_begin_ns, t_end_ns, scene_t0_ns, o,
+      [&](int64_t t, const ImageF& intensity, const std::vector<Event>& events) {
+        const std::string name = aslStamp(t) + ".exr";
+        writeExr(out / "frames" / "data" / name, intensity, {"Y"});
+        csv += aslStamp(t) + "," + name + "\n";
+        txt.write(events);
+        h5.write(events);
+      },
+      [&](double f) { bar.update(static_cast<int64_t>(f * 1000)); });
+  bar.finish();
+  txt.close();
+  h5.close();
+  writeTextAtomic(out / "frames" / "data.csv", csv);
+  const double sim_s = (t_end_ns - t_begin_ns) * 1e-9;
+  std::fprintf(stderr,
+               "events: %zu events from %zu samples over %.3f s of simulation (%.0f events/s "
+               "simulated) in %.1f s wall (%.1f s rendering); steps %.2f..%.2f ms\n",
+               stats.events, stats.samples, sim_s, stats.events / std::max(sim_s, 1e-9),
+               stats.wall_s, stats.render_s, stats.min_dt_s * 1e3, stats.max_dt_s * 1e3);
+  // sensor.yaml last: its presence means the folder is complete
+  const std::string yaml = fmt::format(
+      "# General sensor definitions.\n"
+      "sensor_type: camera\n"
+      "comment: interiornet events0, a simulated event camera (ESIM model) at cam0's centre "
+      "with cam0's horizontal field of view. events.txt lines 't x y p' (t in s from the first "
+      "frame {} ns, p 1 = ON, 0 = OFF); events.h5 DSEC layout (/events/t us since /t_offset). "
+      "frames/ holds the linear intensity of each sample the simulator used (EXR, channel Y)\n\n"
+      "# Sensor extrinsics wrt. the body-frame.\n{}\n"
+      "# Camera specific definitions.\n"
+      "rate_hz: 0  # asynchronous\n"
+      "resolution: [{}, {}]\n"
+      "camera_model: pinhole\n"
+      "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
+      "integers)\n"
+      "distortion_model: radial-tangential\n"
+      "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n\n"
+      "# Event specific definitions.\n"
+      "contrast_threshold_pos: {}\n"
+      "contrast_threshold_neg: {}\n"
+      "contrast_threshold_sigma: {}\n"
+      "refractory_period_ns: {}\n"
+      "log_eps: {}\n"
+      "shot_noise_rate_hz: {}\n"
+      "samples: {}\n"
+      "events: {}\n",
+      scene_t0_ns, translationTbs(Vec3::Zero()), K.width, K.height, formatFloat(K.fx),
+      formatFloat(K.fy), formatFloat(K.cx - 0.5), formatFloat(K.cy - 0.5),
+      formatFloat(opt.sim.c_pos), formatFloat(opt.sim.c_neg), formatFloat(opt.sim.sigma_c),
+      opt.sim.refractory_ns, formatFloat(opt.sim.log_eps),
+      formatFloat(opt.sim.shot_noise_rate_hz), stats.samples, stats.events);
+  writeTextAtomic(out / "sensor.yaml", yaml);
+  return true;
+}
+
+}  // namespace inet::app

@@ -1,0 +1,82 @@
+#pragma once
+// The sensor stage as `generate` and `events` run it: which sensors a --passes list selects,
+// the per-frame derived passes (Kinect-like depth, optical flow) and the sequence-level outputs
+// (events0/, boxes.json).
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/lens.h"
+#include "scene/scene.h"
+#include "sensors/bspline.h"
+#include "sensors/depth_noise.h"
+#include "sensors/event_camera.h"
+#include "trajectory/trajectory.h"
+
+namespace inet {
+class Renderer;
+}
+
+namespace inet::app {
+
+/// What a --passes list asks for: frame passes (render/frame.h) and whole-sequence sensors.
+struct SequencePasses {
+  PassMask frame = 0;
+  bool imu = false;
+  bool imu_by_name = false;  ///< asked for by name (else from default/all: dropped when the
+                             ///< camera path is too short for a spline)
+  bool events = false;
+  bool boxes = false;
+};
+
+/// Parses --passes: frame pass names (rgb, depth, ..., depth_noisy, flow), imu, events, boxes,
+/// "default" (every frame pass, imu and boxes: everything but events) and "all" (everything).
+/// What the camera cannot give is an InputError naming --passes when asked for by name, and left
+/// out silently from "default" and "all": depth_noisy needs a pinhole (the Kinect model is a
+/// pinhole projector-camera pair), flow needs a global shutter (--readout-ms 0), events need a
+/// pinhole or thin lens.
+SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool rolling_shutter);
+
+/// Options of the event camera on the command line (--event-*), added to `cmd`.
+struct EventArgs {
+  EventCameraOptions opt;
+  double refractory_ms = 0.0;
+  double contrast = 0.2;
+  void addTo(CLI::App& cmd);
+  /// The options (InputError naming the flag), with `seed` for the renderer and the simulator.
+  EventCameraOptions options(uint64_t seed) const;
+};
+
+/// Per-frame derived passes of one camera: fills frame.depth_noisy (Pass::DepthNoisy, from
+/// depth_z and normal) and frame.flow* (Pass::Flow, from depth and instance of `frame` and of a
+/// ground-truth render of the next frame), as `passes` asks. `noise_frame` keys the depth noise
+/// (the frame index; cam1 uses another). Without a next frame (the last one) no flow is made.
+struct NextFrame {
+  Pose T_world_camera;
+  TimeNs scene_time_ns = 0;
+};
+void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensModel& lens,
+                       PassMask passes, const KinectNoiseOptions& noise, uint64_t seed,
+                       uint32_t noise_frame, const Pose& T_world_camera, TimeNs scene_time_ns,
+                       const NextFrame* next, Frame& frame);
+
+/// The passes the renderer must make for `passes` (depth and normals for the noisy depth, depth
+/// and instance for flow, instance for boxes).
+PassMask renderPassesFor(PassMask passes, LensType lens, bool boxes);
+
+/// Writes <dir>/events0/: events.txt (RPG: t x y p, t in s from the first frame), events.h5
+/// (DSEC layout), frames/<t>.exr (the linear intensity of each sample, channel Y) with
+/// frames/data.csv, and sensor.yaml (pinhole, thresholds, T_BS = identity: the event pixels
+/// sit with cam0, as a DAVIS). Steps follow the brightness too when `scene` has moving objects
+/// (EventCameraOptions::brightness_criterion). Skipped when a previous run completed it (sensor.yaml, written
+/// last, exists). Returns false if skipped.
+bool writeEventsFolder(const std::filesystem::path& dir, const Renderer& renderer, const Scene& scene,
+                       const CameraIntrinsics& K_cam0, const PoseSpline& spline, TimeNs t_begin_ns,
+                       TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
+                       bool progress);
+
+}  // namespace inet::app
