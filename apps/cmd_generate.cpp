@@ -352,13 +352,21 @@ void runGenerate(const GenerateArgs& a) {
     if (!complete[k]) {
       const auto idx = static_cast<uint32_t>(k);
       const bool respond = !a.response.identity() && has(passes, Pass::Rgb);
-      std::optional<NextFrame> next;
-      if (k + 1 < traj.size())
-        next = NextFrame{traj.poses[k + 1].T_world_camera,
-                         traj.poses[k + 1].t_ns - traj.poses.front().t_ns};
+      // this frame and its neighbours, for the flow; cam1's are moved by the baseline
+      auto neighbour = [&](size_t j, const Pose& T_rig) {
+        return NeighbourFrame{traj.poses[j].T_world_camera * T_rig,
+                              traj.poses[j].t_ns - traj.poses.front().t_ns};
+      };
+      auto derive = [&](const Pose& T_rig, uint32_t noise_frame, Frame& f) {
+        const NeighbourFrame self = neighbour(k, T_rig);
+        std::optional<NeighbourFrame> previous, next;
+        if (k > 0) previous = neighbour(k - 1, T_rig);
+        if (k + 1 < traj.size()) next = neighbour(k + 1, T_rig);
+        deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, noise_frame, self,
+                          previous ? &*previous : nullptr, next ? &*next : nullptr, f);
+      };
       renderer.render(lens, exposureAt(cam, k, shutter), opt, idx, frame);
-      deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, idx,
-                        traj.poses[k].T_world_camera, scene_t, next ? &*next : nullptr, frame);
+      derive(Pose{}, idx, frame);
       if (respond) shown = a.response.apply(frame.rgb, opt.seed, idx);
       if (a.stereo > 0) {
         // cam1: every pose of the exposure moved by the baseline; its own random numbers
@@ -367,12 +375,8 @@ void runGenerate(const GenerateArgs& a) {
         ex1.T_world_camera_open = ex1.T_world_camera_open * T_cam0_cam1;
         ex1.T_world_camera_close = ex1.T_world_camera_close * T_cam0_cam1;
         for (auto& [dt, pose] : ex1.knots) pose = pose * T_cam0_cam1;
-        std::optional<NextFrame> next1 = next;
-        if (next1) next1->T_world_camera = next1->T_world_camera * T_cam0_cam1;
         renderer.render(lens, ex1, opt, idx1, frame1);
-        deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, idx1,
-                          traj.poses[k].T_world_camera * T_cam0_cam1, scene_t,
-                          next1 ? &*next1 : nullptr, frame1);
+        derive(T_cam0_cam1, idx1, frame1);
         if (respond) shown1 = a.response.apply(frame1.rgb, opt.seed, idx1);
       }
       writer.writeFrame(k, frame, respond ? &shown : nullptr, a.stereo > 0 ? &frame1 : nullptr,
@@ -436,7 +440,8 @@ void registerGenerate(CLI::App& app) {
                   "worker threads, 0 = all cores (default 0); never changes the output");
   cmd->add_option("--passes", a->passes,
                   "comma list of frame passes (rgb, depth, ray_depth, normal, label, instance, "
-                  "albedo, shading, depth_noisy = Kinect-like depth, flow = forward optical flow) "
+                  "albedo, shading, depth_noisy = Kinect-like depth, flow = forward optical flow, "
+                  "flow_bwd = backward optical flow) "
                   "and sequence sensors (imu, events, boxes = boxes.json); 'default' = every "
                   "frame pass, imu and boxes; 'all' = default and events (default: default)");
   cmd->add_option("--stereo", a->stereo,

@@ -6,9 +6,9 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "interiornet: photo-realistic indoor sequences with exact ground truth (depth, normals, "
-      "NYU40 labels, instances, albedo, IMU, Kinect-like depth) along realistic camera "
-      "trajectories, for SLAM and scene understanding; procedural apartments or imported "
-      "scenes; SLAM scoring (ATE, RPE).\n"
+      "NYU40 labels, instances, albedo, Kinect-like depth, optical flow, 3D boxes, IMU, events, "
+      "stereo) along realistic camera trajectories, for SLAM and scene understanding; "
+      "procedural apartments or imported scenes; SLAM scoring (ATE, RPE).\n"
       "Run 'interiornet generate' for a 25-frame sequence of the built-in room, or "
       "'interiornet SUBCOMMAND --help' for details."};
   app.require_subcommand(1);

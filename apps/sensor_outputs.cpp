@@ -56,7 +56,7 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
   if (everything || standard) {
     out.frame = kAllPasses;
     if (!pinhole) out.frame &= ~bit(Pass::DepthNoisy);
-    if (rolling_shutter) out.frame &= ~bit(Pass::Flow);
+    if (rolling_shutter) out.frame &= ~(bit(Pass::Flow) | bit(Pass::FlowBackward));
     out.imu = out.boxes = true;
     out.events |= everything && events_ok;
   }
@@ -73,7 +73,7 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
       throw InputError("", "--passes",
                        "depth_noisy needs --lens pinhole (the Kinect model is a pinhole "
                        "projector and camera)");
-    if (has(out.frame, Pass::Flow) && rolling_shutter)
+    if ((has(out.frame, Pass::Flow) || has(out.frame, Pass::FlowBackward)) && rolling_shutter)
       throw InputError("", "--passes",
                        "flow with a rolling shutter (--readout-ms) is not supported: the rows of "
                        "a frame see different poses");
@@ -122,42 +122,69 @@ EventCameraOptions EventArgs::options(uint64_t seed) const {
 PassMask renderPassesFor(PassMask passes, LensType lens, bool boxes) {
   PassMask r = passes & kRenderPasses;
   if (has(passes, Pass::DepthNoisy)) r |= bit(Pass::DepthZ) | bit(Pass::Normal);
-  if (has(passes, Pass::Flow))
+  if (has(passes, Pass::Flow) || has(passes, Pass::FlowBackward))
     r |= bit(groundTruthDepthKind(lens) == DepthKind::ZDepth ? Pass::DepthZ : Pass::DepthRay) |
          bit(Pass::Instance);
   if (boxes) r |= bit(Pass::Instance);
   return r;
 }
 
+namespace {
+
+/// Flow between `frame` (at `self`) and a ground-truth render at `other`: forward when `other` is
+/// the next frame, backward when it is the previous one.
+FlowField flowTowards(const Renderer& renderer, const Scene& scene, const LensModel& lens,
+                      const NeighbourFrame& self, const NeighbourFrame& other, bool forward,
+                      const Frame& frame) {
+  FlowOptions fo;
+  fo.depth_kind = groundTruthDepthKind(lens.type);
+  const bool z = fo.depth_kind == DepthKind::ZDepth;
+  RenderOptions ro;  // ground truth only (no rgb): one ray per pixel, objects at that time
+  ro.passes = bit(z ? Pass::DepthZ : Pass::DepthRay) | bit(Pass::Instance);
+  Frame there;
+  renderer.render(lens, CameraExposure::fixed(other.T_world_camera, other.scene_time_ns), ro, 0,
+                  there);
+  const FlowFrameView here_view{z ? frame.depth_z : frame.depth_ray, frame.instance,
+                                self.T_world_camera};
+  const FlowFrameView there_view{z ? there.depth_z : there.depth_ray, there.instance,
+                                 other.T_world_camera};
+  if (forward)
+    return forwardFlow(here_view, there_view, lens,
+                       objectMotionBetween(scene, self.scene_time_ns * 1e-9,
+                                           other.scene_time_ns * 1e-9, scene.name),
+                       fo);
+  // backwardFlow takes the previous -> this motion table
+  return backwardFlow(there_view, here_view, lens,
+                      objectMotionBetween(scene, other.scene_time_ns * 1e-9,
+                                          self.scene_time_ns * 1e-9, scene.name),
+                      fo);
+}
+
+}  // namespace
+
 void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensModel& lens,
                        PassMask passes, const KinectNoiseOptions& noise, uint64_t seed,
-                       uint32_t noise_frame, const Pose& T_world_camera, TimeNs scene_time_ns,
-                       const NextFrame* next, Frame& frame) {
+                       uint32_t noise_frame, const NeighbourFrame& self,
+                       const NeighbourFrame* previous, const NeighbourFrame* next, Frame& frame) {
   if (has(passes, Pass::DepthNoisy)) {
     frame.depth_noisy = kinectNoisyDepth(frame.depth_z, frame.normal, lens.K, noise, seed,
                                          noise_frame);
     frame.passes |= bit(Pass::DepthNoisy);
   }
-  if (!has(passes, Pass::Flow) || next == nullptr) return;
-  FlowOptions fo;
-  fo.depth_kind = groundTruthDepthKind(lens.type);
-  const bool z = fo.depth_kind == DepthKind::ZDepth;
-  const PassMask gt = bit(z ? Pass::DepthZ : Pass::DepthRay) | bit(Pass::Instance);
-  Frame after;
-  RenderOptions ro;  // ground truth only (no rgb): one ray per pixel, objects at the next time
-  ro.passes = gt;
-  renderer.render(lens, CameraExposure::fixed(next->T_world_camera, next->scene_time_ns), ro, 0,
-                  after);
-  const ObjectMotion motion = objectMotionBetween(scene, scene_time_ns * 1e-9,
-                                                  next->scene_time_ns * 1e-9, scene.name);
-  const FlowFrameView from{z ? frame.depth_z : frame.depth_ray, frame.instance, T_world_camera};
-  const FlowFrameView to{z ? after.depth_z : after.depth_ray, after.instance,
-                         next->T_world_camera};
-  FlowField f = forwardFlow(from, to, lens, motion, fo);
-  frame.flow = std::move(f.flow);
-  frame.flow_valid = std::move(f.valid);
-  frame.flow_occluded = std::move(f.occluded);
-  frame.passes |= bit(Pass::Flow);
+  if (has(passes, Pass::Flow) && next != nullptr) {
+    FlowField f = flowTowards(renderer, scene, lens, self, *next, true, frame);
+    frame.flow = std::move(f.flow);
+    frame.flow_valid = std::move(f.valid);
+    frame.flow_occluded = std::move(f.occluded);
+    frame.passes |= bit(Pass::Flow);
+  }
+  if (has(passes, Pass::FlowBackward) && previous != nullptr) {
+    FlowField f = flowTowards(renderer, scene, lens, self, *previous, false, frame);
+    frame.flow_bwd = std::move(f.flow);
+    frame.flow_bwd_valid = std::move(f.valid);
+    frame.flow_bwd_occluded = std::move(f.occluded);
+    frame.passes |= bit(Pass::FlowBackward);
+  }
 }
 
 bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scene& scene,

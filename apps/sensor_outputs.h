@@ -51,18 +51,20 @@ struct EventArgs {
   EventCameraOptions options(uint64_t seed) const;
 };
 
-/// Per-frame derived passes of one camera: fills frame.depth_noisy (Pass::DepthNoisy, from
-/// depth_z and normal) and frame.flow* (Pass::Flow, from depth and instance of `frame` and of a
-/// ground-truth render of the next frame), as `passes` asks. `noise_frame` keys the depth noise
-/// (the frame index; cam1 uses another). Without a next frame (the last one) no flow is made.
-struct NextFrame {
+/// A neighbouring frame's camera pose and scene time (for the flow).
+struct NeighbourFrame {
   Pose T_world_camera;
   TimeNs scene_time_ns = 0;
 };
+/// Per-frame derived passes of one camera: fills frame.depth_noisy (Pass::DepthNoisy, from
+/// depth_z and normal), frame.flow* (Pass::Flow, from depth and instance of `frame` and of a
+/// ground-truth render of the next frame) and frame.flow_bwd* (Pass::FlowBackward, the same with
+/// the previous frame), as `passes` asks. `noise_frame` keys the depth noise (the frame index;
+/// cam1 uses another). Without a next (previous) frame no forward (backward) flow is made.
 void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensModel& lens,
                        PassMask passes, const KinectNoiseOptions& noise, uint64_t seed,
-                       uint32_t noise_frame, const Pose& T_world_camera, TimeNs scene_time_ns,
-                       const NextFrame* next, Frame& frame);
+                       uint32_t noise_frame, const NeighbourFrame& self,
+                       const NeighbourFrame* previous, const NeighbourFrame* next, Frame& frame);
 
 /// The passes the renderer must make for `passes` (depth and normals for the noisy depth, depth
 /// and instance for flow, instance for boxes).

@@ -42,6 +42,11 @@ constexpr AslSensor kImageSensors[] = {
      "interiornet flow0, registered to cam0. Forward optical flow to the next frame (none for the "
      "last), pixels. <t>.flo Middlebury float32 (1e10 = no surface), <t>.png KITTI 16-bit "
      "(64 u + 32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = occluded in the next frame"},
+    {"flow0_bwd",
+     "interiornet flow0_bwd, registered to cam0. Backward optical flow to the previous frame "
+     "(none for the first), pixels. <t>.flo Middlebury float32 (1e10 = no surface), <t>.png "
+     "KITTI 16-bit (64 u + 32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = occluded in "
+     "the previous frame"},
 };
 
 // Layout of the EuRoC files in ../shared/data/formats/euroc_asl (comments, blank lines, the T_BS
@@ -158,9 +163,12 @@ class AslWriter final : public FormatWriter {
     addOutput("label0/data", "_nyu.png", rawPng(Pass::Label));
     addOutput("label0/data", "_instance.png", rawPng(Pass::Instance));
     addOutput("depth0_noisy/data", ".png", depthPng(Pass::DepthNoisy, kDepthScaleMm));
-    addOutput("flow0/data", ".flo", flowFlo());
-    addOutput("flow0/data", ".png", flowKittiPng());
-    addOutput("flow0/data", "_occ.png", flowOcclusionPng());
+    addOutput("flow0/data", ".flo", flowFlo(Pass::Flow));
+    addOutput("flow0/data", ".png", flowKittiPng(Pass::Flow));
+    addOutput("flow0/data", "_occ.png", flowOcclusionPng(Pass::Flow));
+    addOutput("flow0_bwd/data", ".flo", flowFlo(Pass::FlowBackward));
+    addOutput("flow0_bwd/data", ".png", flowKittiPng(Pass::FlowBackward));
+    addOutput("flow0_bwd/data", "_occ.png", flowOcclusionPng(Pass::FlowBackward));
     if (ctx().spec.stereo_baseline_m > 0) {
       // cam1 writes every output of cam0 into the twin folder (cam0 -> cam1, depth0 -> depth1)
       const std::vector<FrameOutput> left = outputs();
@@ -193,8 +201,7 @@ class AslWriter final : public FormatWriter {
             camera == 0 ? std::string(sensor.folder) : rightFolder(sensor.folder);
         for (const auto& o : outputs()) {
           if (o.folder != folder + "/data") continue;
-          writeTextAtomic(dir / folder / "data.csv",
-                          cameraCsv(o.suffix, o.needs_next_frame ? 1 : 0));
+          writeTextAtomic(dir / folder / "data.csv", cameraCsv(o));
           writeTextAtomic(dir / folder / "sensor.yaml",
                           cameraYaml(sensorComment(sensor, camera), camera));
           break;
@@ -216,7 +223,7 @@ class AslWriter final : public FormatWriter {
     std::string c = sensorComment(sensor);
     if (camera == 0) return c;
     // the right camera's folders name themselves and are registered to cam1
-    for (const std::string from : {std::string(sensor.folder), std::string("cam0")}) {
+    for (const std::string& from : {std::string(sensor.folder), std::string("cam0")}) {
       const std::string to = rightFolder(from);
       for (size_t at = 0; (at = c.find(from, at)) != std::string::npos; at += to.size())
         c.replace(at, from.size(), to);
@@ -244,10 +251,12 @@ class AslWriter final : public FormatWriter {
            "depth (camera centre to surface) in metres, float channel Z, 0 = no depth";
   }
 
-  /// data.csv of a folder: one row per frame (the last `drop_last` frames have no file).
-  std::string cameraCsv(const std::string& suffix, size_t drop_last = 0) const {
+  /// data.csv of a folder: one row per frame that has the output `o`.
+  std::string cameraCsv(const FrameOutput& o) const {
+    const std::string& suffix = o.suffix;
     std::string s = std::string(kEurocCameraCsvHeader) + "\n";
-    for (size_t k = 0; k + drop_last < ctx().traj.size(); ++k) {
+    for (size_t k = 0; k < ctx().traj.size(); ++k) {
+      if (!o.writtenFor(k, ctx().traj.size())) continue;
       const std::string stem = frameStem(k);
       s += stem + "," + stem + suffix + "\n";
     }

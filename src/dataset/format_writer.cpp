@@ -87,8 +87,9 @@ std::vector<fs::path> FormatWriter::frameFiles(size_t k) const {
 void FormatWriter::addOutput(std::string folder, std::string suffix, FrameEncoder encoder,
                              int camera) {
   if (!has(ctx_->spec.passes, encoder.pass)) return;
-  const bool next = encoder.pass == Pass::Flow;
-  outputs_.push_back({std::move(folder), std::move(suffix), std::move(encoder), camera, next});
+  const bool next = encoder.pass == Pass::Flow, previous = encoder.pass == Pass::FlowBackward;
+  outputs_.push_back(
+      {std::move(folder), std::move(suffix), std::move(encoder), camera, next, previous});
 }
 
 std::vector<std::string> formatNames() {
@@ -175,25 +176,31 @@ FrameEncoder rawPng(Pass pass) {
 }
 
 namespace {
-/// The flow pass of a frame as a FlowField (copies: the files' writers take that type).
-FlowField flowOf(const Frame& f) {
-  return FlowField{f.flow, f.flow_valid, f.flow_occluded};
+/// A flow pass of a frame as a FlowField (copies: the files' writers take that type).
+FlowField flowOf(const Frame& f, Pass pass) {
+  if (pass == Pass::Flow) return FlowField{f.flow, f.flow_valid, f.flow_occluded};
+  INET_CHECK_MSG(pass == Pass::FlowBackward, "a flow encoder takes flow or flow_bwd");
+  return FlowField{f.flow_bwd, f.flow_bwd_valid, f.flow_bwd_occluded};
 }
 }  // namespace
 
-FrameEncoder flowFlo() {
-  return {Pass::Flow, "flo/flow",
-          [](const fs::path& p, const FrameView& v) { writeFlo(p, flowOf(v.frame)); }};
+FrameEncoder flowFlo(Pass pass) {
+  flowOf(Frame{}, pass);  // checks the pass
+  return {pass, "flo/" + passName(pass),
+          [pass](const fs::path& p, const FrameView& v) { writeFlo(p, flowOf(v.frame, pass)); }};
 }
 
-FrameEncoder flowKittiPng() {
-  return {Pass::Flow, "png16-kitti/flow",
-          [](const fs::path& p, const FrameView& v) { writeKittiFlowPng(p, flowOf(v.frame)); }};
+FrameEncoder flowKittiPng(Pass pass) {
+  flowOf(Frame{}, pass);
+  return {pass, "png16-kitti/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
+            writeKittiFlowPng(p, flowOf(v.frame, pass));
+          }};
 }
 
-FrameEncoder flowOcclusionPng() {
-  return {Pass::Flow, "png8-occlusion/flow", [](const fs::path& p, const FrameView& v) {
-            ImageU8 mask = v.frame.flow_occluded;
+FrameEncoder flowOcclusionPng(Pass pass) {
+  flowOf(Frame{}, pass);
+  return {pass, "png8-occlusion/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
+            ImageU8 mask = pass == Pass::Flow ? v.frame.flow_occluded : v.frame.flow_bwd_occluded;
             for (uint8_t& m : mask.data) m = m ? 255 : 0;
             writePng(p, mask);
           }};

@@ -89,8 +89,12 @@ struct FrameOutput {
   int camera = 0;  ///< 0 = cam0's frame, 1 = the stereo cam1's frame
   /// Every frame but the last (forward flow: frame k -> k + 1 needs a next frame).
   bool needs_next_frame = false;
+  /// Every frame but the first (backward flow: frame k -> k - 1).
+  bool needs_previous_frame = false;
   /// Is this output written for frame k of n?
-  bool writtenFor(size_t k, size_t n) const { return !needs_next_frame || k + 1 < n; }
+  bool writtenFor(size_t k, size_t n) const {
+    return (!needs_next_frame || k + 1 < n) && (!needs_previous_frame || k > 0);
+  }
 };
 
 class FormatWriter {
@@ -145,13 +149,14 @@ FrameEncoder depthPng(Pass pass, double scale);  ///< DepthZ, DepthRay: 16-bit P
 FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names);  ///< float32 EXR
 FrameEncoder normalPng(Pass pass);  ///< Normal: 16-bit RGB PNG, see encodeNormal16
 FrameEncoder rawPng(Pass pass);     ///< Label (8-bit), Instance (16-bit): as stored
-/// Flow: Middlebury .flo (float32 u, v; no surface = 1e10, "unknown")
-FrameEncoder flowFlo();
-/// Flow: KITTI 16-bit RGB PNG (64 u + 2^15, 64 v + 2^15, valid); |flow| >= 512 px clamps
-FrameEncoder flowKittiPng();
-/// Flow: occlusion mask, 8-bit grey: 255 = hidden in frame k + 1 or leaves its image, 0 = seen
-/// in both or no surface
-FrameEncoder flowOcclusionPng();
+/// Flow or FlowBackward: Middlebury .flo (float32 u, v; no surface = 1e10, "unknown")
+FrameEncoder flowFlo(Pass pass);
+/// Flow or FlowBackward: KITTI 16-bit RGB PNG (64 u + 2^15, 64 v + 2^15, valid); |flow| >= 512 px
+/// clamps
+FrameEncoder flowKittiPng(Pass pass);
+/// Flow or FlowBackward: occlusion mask, 8-bit grey: 255 = hidden in the other frame or leaves
+/// its image, 0 = seen in both or no surface
+FrameEncoder flowOcclusionPng(Pass pass);
 
 /// Fixed-point text with `decimals` digits; never "-0.000" (a tiny negative prints as zero).
 std::string formatFixed(double v, int decimals);

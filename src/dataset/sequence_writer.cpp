@@ -25,7 +25,7 @@ namespace {
 constexpr Pass kAllPassList[] = {Pass::Rgb,      Pass::DepthZ,  Pass::DepthRay,
                                  Pass::Normal,   Pass::Label,   Pass::Instance,
                                  Pass::Albedo,   Pass::Shading, Pass::DepthNoisy,
-                                 Pass::Flow};
+                                 Pass::Flow,     Pass::FlowBackward};
 
 void validateTrajectory(const Trajectory& traj) {
   if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
@@ -70,8 +70,9 @@ void checkImage(const Image<T>& img, Pass pass, int channels, const CameraIntrin
 /// A frame that does not match the spec is a caller bug (the renderer was asked for these
 /// passes at this size), not bad user input.
 void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const CameraIntrinsics& K,
-                size_t k, bool last) {
+                size_t k, bool first, bool last) {
   if (last) mask &= ~static_cast<PassMask>(Pass::Flow);  // no next frame, no forward flow
+  if (first) mask &= ~static_cast<PassMask>(Pass::FlowBackward);
   for (Pass p : kAllPassList)
     INET_CHECK_MSG(
         !has(mask, p) || has(f.passes, p),
@@ -92,6 +93,11 @@ void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const 
     checkImage(f.flow, Pass::Flow, 2, K, k);
     checkImage(f.flow_valid, Pass::Flow, 1, K, k);
     checkImage(f.flow_occluded, Pass::Flow, 1, K, k);
+  }
+  if (has(mask, Pass::FlowBackward)) {
+    checkImage(f.flow_bwd, Pass::FlowBackward, 2, K, k);
+    checkImage(f.flow_bwd_valid, Pass::FlowBackward, 1, K, k);
+    checkImage(f.flow_bwd_occluded, Pass::FlowBackward, 1, K, k);
   }
 }
 
@@ -229,6 +235,10 @@ json encodingsJson(const SequenceContext& c) {
         "Middlebury (float32 u, v; 1e10 = no surface), <t>.png KITTI (uint16 RGB = 64 u + "
         "32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = hidden in frame k + 1 or "
         "outside its image";
+  if (has(c.spec.passes, Pass::FlowBackward))
+    j["flow_bwd"] =
+        "backward optical flow frame k -> k - 1 (flow0_bwd/), for every frame but the first, "
+        "encoded as flow";
   if (c.spec.rgb_exr)
     j["rgb_exr"] =
         "asl cam0/data/<t>.exr: linear RGB radiance as rendered (before exposure, sensor noise, "
@@ -343,14 +353,15 @@ void SequenceWriter::writeFrame(size_t k, const Frame& frame, const ImageF* rgb_
   INET_CHECK_MSG(k < frameCount(), fmt::format("frame {} of {}", k, frameCount()));
   const bool last = k + 1 == frameCount();
   const FrameView view{frame, rgb_display ? *rgb_display : frame.rgb};
-  checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, last);
+  checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, k == 0, last);
   const bool stereo = ctx_->spec.stereo_baseline_m > 0;
   INET_CHECK_MSG(stereo == (right != nullptr),
                  "writeFrame takes cam1's frame exactly when the spec has a stereo baseline");
   const FrameView right_view{right ? *right : frame,
                              right_display ? *right_display : (right ? right->rgb : frame.rgb)};
   if (right)
-    checkFrame(*right, right_view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, last);
+    checkFrame(*right, right_view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, k == 0,
+               last);
   // One job per distinct encoding: outputs with the same key (ASL cam0 and TUM rgb) are encoded
   // once and the other names get a hard link or a copy of the finished file.
   struct Job {

@@ -16,7 +16,7 @@ constexpr PassEntry kPasses[] = {
     {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},    {Pass::DepthRay, "ray_depth"},
     {Pass::Normal, "normal"}, {Pass::Label, "label"},     {Pass::Instance, "instance"},
     {Pass::Albedo, "albedo"}, {Pass::Shading, "shading"}, {Pass::DepthNoisy, "depth_noisy"},
-    {Pass::Flow, "flow"},
+    {Pass::Flow, "flow"},     {Pass::FlowBackward, "flow_bwd"},
 };
 }  // namespace
 

@@ -25,12 +25,14 @@ enum class Pass : uint32_t {
   DepthNoisy = 1u << 8,  ///< Kinect-like z-depth (sensors/depth_noise.h), metres, 0 = no return
   Flow = 1u << 9,        ///< forward optical flow to the next frame (sensors/optical_flow.h):
                          ///< flow (2 x float, px), flow_valid and flow_occluded (1 x uint8)
+  FlowBackward = 1u << 10,  ///< backward flow to the previous frame: flow_bwd, flow_bwd_valid,
+                            ///< flow_bwd_occluded, as Flow
 };
 using PassMask = uint32_t;
 /// What the renderer makes: RGB, the exact ground truth and shading.
 constexpr PassMask kRenderPasses = 0xff;
 /// Every pass, the derived ones included.
-constexpr PassMask kAllPasses = 0x3ff;
+constexpr PassMask kAllPasses = 0x7ff;
 /// The exact passes: one ray through each pixel centre (everything but rgb and shading).
 constexpr PassMask kGroundTruthPasses = 0x7e;
 inline bool has(PassMask m, Pass p) {
@@ -38,7 +40,7 @@ inline bool has(PassMask m, Pass p) {
 }
 
 /// Name of a pass as used on the command line ("rgb", "depth", "ray_depth", "normal", "label",
-/// "instance", "albedo", "shading", "depth_noisy", "flow").
+/// "instance", "albedo", "shading", "depth_noisy", "flow", "flow_bwd").
 std::string passName(Pass p);
 /// Parses "rgb,depth,..." or "all" into a mask; throws InputError(where, "--passes", ...).
 PassMask parsePassList(const std::string& list, const std::string& where);
@@ -57,6 +59,9 @@ struct Frame {
   ImageF flow;            ///< 2 channels (u, v), pixels, frame k -> k + 1
   ImageU8 flow_valid;     ///< 1 channel, 1 = a surface whose point has an image in frame k + 1
   ImageU8 flow_occluded;  ///< 1 channel, 1 = hidden in frame k + 1 or leaves its image
+  ImageF flow_bwd;            ///< 2 channels (u, v), pixels, frame k -> k - 1
+  ImageU8 flow_bwd_valid;     ///< as flow_valid, towards frame k - 1
+  ImageU8 flow_bwd_occluded;  ///< as flow_occluded, towards frame k - 1
 };
 
 }  // namespace inet

@@ -105,6 +105,9 @@ EventSimulator::EventSimulator(int width, int height, const EventOptions& opts)
   ref_.assign(n, 0.0);
   leak_.assign(n, 0.0);
   t_last_.assign(n, kNoEvent);
+  crossings_.assign(n, 0);
+  next_on_.assign(n, 0.0);
+  next_off_.assign(n, 0.0);
   rows_.resize(static_cast<size_t>(height));
   if (opts_.threshold_spread > 0) {
     theta_on_.resize(n);
@@ -119,6 +122,21 @@ EventSimulator::EventSimulator(int width, int height, const EventOptions& opts)
           std::max(opts_.c_neg + opts_.threshold_spread * z_off, kMinContrastThreshold));
     }
   }
+}
+
+void EventSimulator::drawThresholds(size_t i) {
+  const int x = static_cast<int>(i % width_), y = static_cast<int>(i / width_);
+  double on = pixelThreshold(x, y, 1), off = pixelThreshold(x, y, 0);
+  if (opts_.sigma_c > 0) {
+    CounterRng rng(opts_.seed, RngStream::Sensor, static_cast<uint32_t>(i), crossings_[i],
+                   kEventThresholdRngTag);
+    double z_on, z_off;
+    rng.normalPair(z_on, z_off);
+    on += opts_.sigma_c * z_on;
+    off += opts_.sigma_c * z_off;
+  }
+  next_on_[i] = std::max(on, kMinContrastThreshold);
+  next_off_[i] = std::max(off, kMinContrastThreshold);
 }
 
 double EventSimulator::pixelThreshold(int x, int y, int p) const {
@@ -159,15 +177,13 @@ void EventSimulator::processRow(int y, const ImageF& L, const Interval& iv,
     const double change = cur - prev;
     if (opts_.leak_rate_hz > 0 ? change != 0 : std::abs(change) > kTolerance) {
       const int pol = cur >= prev ? 1 : -1;
-      double C = pol > 0 ? theta_on : theta_off;
-      if (opts_.sigma_c > 0) C += opts_.sigma_c * rng.normal();
-      C = std::max(C, kMinContrastThreshold);
       // ESIM also requires the level to lie strictly past prev. A level at or before prev can
       // only come from a threshold redrawn smaller than the last one; ESIM then emits nothing
       // and the pixel stays blocked while L keeps going the same way. It fires at t0 + 1 ns here.
       double level = ref_[i];
       for (;;) {
-        level += pol * C;
+        // the pixel's threshold for its next crossing, drawn when it last crossed
+        level += pol * (pol > 0 ? next_on_[i] : next_off_[i]);
         if (pol > 0 ? level > cur : level < cur) break;
         int64_t t = iv.t0_ns + std::llround((level - prev) / (cur - prev) * dt_ns);
         t = std::clamp(t, iv.t0_ns + 1, iv.t1_ns);
@@ -177,6 +193,8 @@ void EventSimulator::processRow(int y, const ImageF& L, const Interval& iv,
           t_last_[i] = t;
         }
         ref_[i] = level;  // ESIM moves the reference even for a dropped event
+        ++crossings_[i];
+        drawThresholds(i);
       }
     }
     if (shot) {
@@ -234,6 +252,7 @@ size_t EventSimulator::addSample(int64_t t_ns, const ImageF& log_intensity, std:
       }
       prev_[i] = static_cast<double>(log_intensity.data[i]) + leak_[i];
       ref_[i] = static_cast<double>(log_intensity.data[i]);
+      drawThresholds(i);
     }
     t_prev_ = t_ns;
     return 0;
@@ -250,7 +269,8 @@ size_t EventSimulator::addSample(int64_t t_ns, const ImageF& log_intensity, std:
   const size_t start = out.size();
   size_t total = 0;
   for (const auto& r : rows_) total += r.size();
-  out.reserve(start + total);
+  if (out.capacity() < start + total)  // grow geometrically: an exact reserve copies every call
+    out.reserve(std::max(start + total, 2 * out.capacity()));
   for (const auto& r : rows_) out.insert(out.end(), r.begin(), r.end());
   std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), eventLess);
   return total;

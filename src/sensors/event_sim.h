@@ -7,31 +7,38 @@
 // Brightness L = ln(eps + I), I linear luminance in [0, 1] (logIntensity). Per pixel, with the
 // reference level L_ref set to L_0 at the first sample (which emits nothing), each interval
 // (t_{k-1}, L_{k-1}) -> (t_k, L_k) with |L_k - L_{k-1}| > 1e-6 does:
-//     p = sign(L_k - L_{k-1});  C = theta_p + N(0, sigma_c), clamped >= 0.01 (drawn per pixel
-//     per interval);  repeat { x = L_ref + p C; stop if x is past L_k; t = t_{k-1} + (x -
+//     p = sign(L_k - L_{k-1});  repeat { C = the pixel's current threshold of polarity p;
+//     x = L_ref + p C; stop if x is past L_k; t = t_{k-1} + (x -
 //     L_{k-1}) / (L_k - L_{k-1}) (t_k - t_{k-1}) (rounded to the nearest ns, then clamped to
 //     [t_{k-1} + 1 ns, t_k]); emit (t, x, y, p) unless t - t_last < refractory; L_ref = x (also
-//     when the event is dropped, as ESIM does) }.
+//     when the event is dropped, as ESIM does); draw the pixel's next thresholds }.
+// A pixel's thresholds are C_on = theta_on + N(0, sigma_c) and C_off = theta_off + N(0, sigma_c),
+// clamped >= 0.01, drawn at the start and again after each of its crossings: the comparator
+// noise of one reset holds until the next event.
 // theta_p = c_pos or c_neg, or a fixed per-pixel value N(c_p, threshold_spread) (v2e).
 // The events of one interval are sorted by (t, y, x, p); every one lies in (t_{k-1}, t_k], so
 // successive calls append a globally sorted stream.
 //
 // Differences from ESIM:
-//  - ESIM also stops when x is not strictly past L_{k-1}. That happens only when the threshold
-//    redrawn for this interval is smaller than L_{k-1} - L_ref (same direction as before), and
-//    then ESIM emits nothing, now and in every later interval while L keeps moving that way: the
-//    pixel is blocked until L turns back (on a smooth random video with sigma_c = 0.03, ESIM's
-//    rule gave 30% of the events of the noise-free run). Here such a level fires at once, at
-//    t_{k-1} + 1 ns, like a real pixel whose threshold drops below its current contrast (110% of
-//    the noise-free count: a threshold redrawn at every interval acts lower when intervals are
-//    short). With sigma_c = 0 (or a constant threshold) both rules give the same events.
+//  - ESIM redraws C per pixel per sampling interval, and uses that one draw for every crossing
+//    of the interval. Both make the output depend on how finely the simulator samples, which is
+//    an artefact of the simulation, not of the sensor: more intervals mean more redraws, a
+//    smaller effective threshold and more events (+10 % at 0.5-3 ms steps on a smooth random
+//    video), and n crossings in one interval share one error, so the nominal-C reconstruction
+//    drifts by n sigma instead of sqrt(n) sigma. Here a threshold is drawn per crossing and held
+//    until that crossing fires, whatever the sampling (keyed by the pixel's crossing count).
+//  - ESIM also stops when x is not strictly past L_{k-1}, which can only happen with a threshold
+//    that changed between intervals; with thresholds held per crossing it does not arise, but
+//    such a level would fire at t_{k-1} + 1 ns rather than block the pixel.
+//    With sigma_c = 0 (or a constant threshold) both rules give the same events as ESIM.
 //  - below ESIM's resolution: L and the crossing arithmetic are double (ESIM: float); the time
 //    is rounded to the nearest ns (ESIM truncates), then kept > t_{k-1}.
 //
 // Optional noise (v2e's "noisy" mode; all 0 = off = pure ESIM):
 //  - leak: the reference sinks at leak_rate_hz * theta_on per second (v2e
 //    subtract_leak_current), so a static pixel fires ON events at leak_rate_hz. Implemented as
-//    the equivalent rising offset on the signal (crossing times stay exact); each pixel starts at
+//    the equivalent rising offset on the signal (crossing times stay exact; the 1e-6 tolerance
+//    is then dropped, as the leak of one short interval can be below it); each pixel starts at
 //    a random phase in [0, theta_on) so that leak events of a uniform scene are not synchronous
 //    (our choice).
 //  - shot noise: per interval, ON with probability r/2 dt f theta_nominal/theta_on, OFF with
@@ -40,10 +47,12 @@
 //    subject to the refractory period. A shot event resets the pixel's reference to the current
 //    level, as a real pixel's reset does (v2e shifts it by +-theta instead).
 //
-// Randomness: CounterRng(seed, RngStream::Sensor, pixel = y * width + x, interval k - 1,
-// kEventRngTag) per pixel and interval (threshold noise, then shot noise) and
-// CounterRng(seed, RngStream::Sensor, pixel, 0, kEventPixelRngTag) for the fixed per-pixel
-// values, so the output is a pure function of (seed, samples) whatever the thread count.
+// Randomness: CounterRng(seed, RngStream::Sensor, pixel = y * width + x, crossing count,
+// kEventThresholdRngTag) for the thresholds, CounterRng(seed, RngStream::Sensor, pixel,
+// interval k - 1, kEventRngTag) per pixel and interval (shot noise) and
+// CounterRng(seed, RngStream::Sensor, pixel, 0 or 1, kEventPixelRngTag) for the fixed per-pixel
+// thresholds (0) and leak phase (1), so the output is a pure function of (seed, samples)
+// whatever the thread count.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -57,6 +66,8 @@ namespace inet {
 constexpr uint32_t kEventRngTag = 0x455653u;
 /// Third counter word of the fixed per-pixel event values (ASCII "EVP").
 constexpr uint32_t kEventPixelRngTag = 0x455650u;
+/// Third counter word of the per-crossing threshold draws (ASCII "EVT").
+constexpr uint32_t kEventThresholdRngTag = 0x455654u;
 /// Smallest contrast threshold used (log units); keeps the crossing loop finite (SENSORS.md 3).
 constexpr double kMinContrastThreshold = 0.01;
 
@@ -76,8 +87,8 @@ struct EventOptions {
   /// default (ESIM's flag default 1.0 is far above real sensors' 0.1-0.5).
   double c_pos = 0.2;
   double c_neg = 0.2;
-  /// Std of the threshold noise redrawn per pixel per interval (ESIM sigma_Cp = sigma_Cm
-  /// default 0.021).
+  /// Std of the threshold noise, drawn per pixel per crossing (ESIM's sigma_Cp = sigma_Cm
+  /// default 0.021; ESIM draws it per sampling interval, see the header comment).
   double sigma_c = 0.021;
   /// Events of a pixel closer than this to its previous event are dropped, ns (ESIM default 0;
   /// v2e 0.5 ms).
@@ -105,7 +116,7 @@ double logIntensity(float linear_luminance, double eps);
 
 /// One-channel log-intensity image of a linear image: 1 channel = luminance itself, 3 or 4
 /// (alpha ignored) = Rec. 709 / sRGB-primaries luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
-/// The input must be LINEAR (not gamma encoded); 8-bit data is divided by 255 first.
+/// The input must be LINEAR (not gamma encoded) with 1 = white: divide 8-bit data by 255.
 ImageF logIntensityImage(const ImageF& linear, double eps);
 
 /// Stateful per-pixel simulator: feed log-intensity samples in increasing time order.
@@ -147,6 +158,8 @@ class EventSimulator {
  private:
   struct Interval;
   void processRow(int y, const ImageF& L, const Interval& iv, std::vector<Event>& row_out);
+  /// Draws pixel i's thresholds for its next crossing (after crossing number crossings_[i]).
+  void drawThresholds(size_t i);
 
   int width_, height_;
   EventOptions opts_;
@@ -159,6 +172,8 @@ class EventSimulator {
   std::vector<double> leak_;                 // accumulated leak offset (0 without leak)
   std::vector<int64_t> t_last_;              // last emitted event, INT64_MIN = none yet
   std::vector<float> theta_on_, theta_off_;  // empty unless threshold_spread > 0
+  std::vector<uint32_t> crossings_;          // crossings so far (keys the threshold draws)
+  std::vector<double> next_on_, next_off_;   // thresholds of the next ON / OFF crossing
   std::vector<std::vector<Event>> rows_;     // scratch, one per row
 };
 
@@ -168,8 +183,8 @@ class EventSimulator {
 ImageF reconstructLogIntensity(const std::vector<Event>& events, const ImageF& initial_log,
                                double c_pos, double c_neg);
 
-/// ESIM's adaptive sampling (DataProviderOnlineRender / simulation_adaptive_sampling_*): the
-/// next sample comes after
+/// ESIM's adaptive sampling (DataProviderOnlineMoving3DCameraRig, flags
+/// simulation_adaptive_sampling_method / _lambda): the next sample comes after
 ///     brightness mode: dt = lambda / max_x |dL/dt|   (lambda in log units, <= C)
 ///     flow mode:       dt = lambda / max_x |flow|    (lambda in pixels, flow in px/s)
 /// clamped to [min_dt_ns, 1 / min_rate_hz] (ESIM: "never slower than the minimum frame rate";

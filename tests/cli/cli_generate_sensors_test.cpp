@@ -108,7 +108,9 @@ std::vector<std::pair<int64_t, std::string>> readCameraCsv(const fs::path& folde
     // <timestamp>.<ext>; label0 adds a suffix (<t>_nyu.png), which readers take from the csv
     EXPECT_EQ(f.at(1).substr(0, f.at(0).size()), f.at(0)) << "file name starts with the time";
     EXPECT_TRUE(fs::is_regular_file(folder / "data" / f.at(1))) << f.at(1);
-    if (!rows.empty()) EXPECT_GT(t, rows.back().first);
+    if (!rows.empty()) {
+      EXPECT_GT(t, rows.back().first);
+    }
     rows.emplace_back(t, f.at(1));
   }
   return rows;
@@ -264,7 +266,9 @@ TEST_F(GenerateAllSensors, FlowNoisyDepthBoxesAndEventsAreWritten) {
   EXPECT_GT(txt.events.size(), 0u);
   EXPECT_EQ(h5.width, 32);
   for (size_t i = 0; i < txt.events.size(); ++i) {
-    if (i > 0) EXPECT_LE(txt.events[i - 1].t_ns, txt.events[i].t_ns);
+    if (i > 0) {
+      EXPECT_LE(txt.events[i - 1].t_ns, txt.events[i].t_ns);
+    }
     EXPECT_EQ(txt.events[i].x, h5.events[i].x);
     EXPECT_EQ(txt.events[i].p, h5.events[i].p);
     EXPECT_LE(std::abs(txt.events[i].t_ns - h5.events[i].t_ns), 1000) << "h5 holds microseconds";
@@ -274,6 +278,31 @@ TEST_F(GenerateAllSensors, FlowNoisyDepthBoxesAndEventsAreWritten) {
   // meta.json records the stereo rig
   const auto meta = nlohmann::json::parse(readTextFile(seq_ / "meta.json"));
   EXPECT_EQ(meta["stereo"]["baseline_m"], 0.1);
+}
+
+TEST_F(GenerateAllSensors, EventsCommandAloneOnTheSequencesTrajectory) {
+  ASSERT_EQ(result_->exit_code, 0) << result_->err;
+  // the TUM ground truth of the generated sequence as input; knots at its poses
+  const fs::path out = *dir_ / "events_alone";
+  const std::string cmd = "events --trajectory " + (seq_ / "groundtruth.txt").string() +
+                          " --knot-spacing 0.04 --event-width 32 --event-height 24 --event-spp 2 "
+                          "--no-progress --out " + out.string();
+  const RunResult r = runInterinet(cmd);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const EventFile ev = readEventsTxt(out / "events0/events.txt");
+  EXPECT_GT(ev.events.size(), 0u);
+  const std::string yaml = readTextFile(out / "events0/sensor.yaml");
+  EXPECT_NE(yaml.find("resolution: [32, 24]"), std::string::npos);
+  // a finished folder is not redone: the rerun leaves every byte
+  const auto before = readTree(out);
+  ASSERT_EQ(runInterinet(cmd).exit_code, 0);
+  EXPECT_EQ(readTree(out), before);
+  // bad input: one line naming the flag, nothing written
+  const RunResult bad = runInterinet("events --trajectory " + (seq_ / "groundtruth.txt").string() +
+                                     " --hfov 200 --out " + (*dir_ / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--hfov"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(*dir_ / "bad"));
 }
 
 TEST(GenerateSensorErrors, ImpossibleCombinationsNameTheFlag) {
