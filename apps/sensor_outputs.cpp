@@ -78,8 +78,10 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
                        "flow with a rolling shutter (--readout-ms) is not supported: the rows of "
                        "a frame see different poses");
   }
-  if (out.frame == 0 && !out.imu && !out.events && !out.boxes)
-    throw InputError("", "--passes", "no pass selected");
+  if (out.frame == 0)
+    throw InputError("", "--passes",
+                     "select at least one frame pass (rgb, depth, ...): imu, events and boxes "
+                     "go with frames (for them alone: interiornet imu, interiornet events)");
   return out;
 }
 

@@ -230,6 +230,26 @@ TEST_F(GenerateAllSensors, FlowNoisyDepthBoxesAndEventsAreWritten) {
     EXPECT_EQ(valid, 64 * 48) << "a closed room: every pixel has flow";
     EXPECT_TRUE(fs::is_regular_file(seq_ / "flow0/data" / (stem + "_occ.png")));
   }
+  // backward flow (flow0_bwd/, every frame but the first) undoes the forward flow: from x in
+  // frame k to x' = x + f in frame k + 1, the backward flow at x' points back by about -f
+  const auto brows = readCameraCsv(seq_ / "flow0_bwd");
+  ASSERT_EQ(brows.size(), 4u);
+  EXPECT_EQ(brows[0].first, readCameraCsv(seq_ / "flow0")[1].first);
+  const FlowField fwd = readFlo(seq_ / "flow0/data" / rows[1].second);
+  const FlowField bwd = readFlo(seq_ / "flow0_bwd/data" / brows[1].second);
+  std::vector<double> loop;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      if (!fwd.valid.at(x, y)) continue;
+      const double u = x + 0.5 + fwd.flow.at(x, y, 0), v = y + 0.5 + fwd.flow.at(x, y, 1);
+      const int xi = static_cast<int>(std::floor(u)), yi = static_cast<int>(std::floor(v));
+      if (xi < 0 || yi < 0 || xi >= 64 || yi >= 48 || !bwd.valid.at(xi, yi)) continue;
+      loop.push_back(std::hypot(fwd.flow.at(x, y, 0) + bwd.flow.at(xi, yi, 0),
+                                fwd.flow.at(x, y, 1) + bwd.flow.at(xi, yi, 1)));
+    }
+  ASSERT_GT(loop.size(), 2000u);
+  std::sort(loop.begin(), loop.end());
+  EXPECT_LT(loop[loop.size() / 2], 0.1) << "median forward-backward loop error, px";
   // noisy depth at this focal length (48 px) is dominated by the Kinect's 1/8 px disparity
   // steps, z = f b / (k / 8): every return sits on such a level (to the PNG's 1 mm), within a few
   // levels of the true depth
