@@ -33,8 +33,8 @@ fuzz:
 	@bash scripts/setup.sh fuzz
 	@cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DINET_FUZZ=ON -DINET_BUILD_TESTS=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json
-	@for t in layout trajectory camera_json; do \
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json fuzz_sensors
+	@for t in layout trajectory camera_json sensors; do \
 	  mkdir -p build-fuzz/corpus/$$t && cp -n fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ ; \
 	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
 	  build-fuzz/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=0 build-fuzz/corpus/$$t \

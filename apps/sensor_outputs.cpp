@@ -92,6 +92,13 @@ void EventArgs::addTo(CLI::App& cmd) {
                  "path-traced samples per pixel of each event-camera sample (default 16)");
   cmd.add_option("--contrast", contrast,
                  "ON and OFF contrast thresholds in log intensity (default 0.2, as v2e)");
+  cmd.add_option("--contrast-pos", contrast_pos, "ON threshold alone (default: --contrast)");
+  cmd.add_option("--contrast-neg", contrast_neg, "OFF threshold alone (default: --contrast)");
+  cmd.add_option("--threshold-spread", opt.sim.threshold_spread,
+                 "std of each pixel's fixed threshold around the nominal one (v2e's mismatch, "
+                 "0.03 there; default 0)");
+  cmd.add_option("--leak-rate", opt.sim.leak_rate_hz,
+                 "leak events per pixel and second (v2e 0.01-0.2; default 0)");
   cmd.add_option("--contrast-sigma", opt.sim.sigma_c,
                  "threshold noise per pixel and interval, std (default 0.021, ESIM)");
   cmd.add_option("--refractory-ms", refractory_ms,
@@ -102,20 +109,25 @@ void EventArgs::addTo(CLI::App& cmd) {
 
 EventCameraOptions EventArgs::options(uint64_t seed) const {
   EventCameraOptions o = opt;
-  if (!(contrast >= kMinContrastThreshold && contrast <= 10))
-    throw InputError("", "--contrast", fmt::format("must be in [{}, 10]", kMinContrastThreshold));
-  o.sim.c_pos = o.sim.c_neg = contrast;
+  const std::pair<double, const char*> thresholds[] = {
+      {contrast, "--contrast"}, {contrast_pos, "--contrast-pos"}, {contrast_neg, "--contrast-neg"}};
+  for (const auto& [c, flag] : thresholds)
+    if (!std::isnan(c) && !(c >= kMinContrastThreshold && c <= 10))
+      throw InputError("", flag, fmt::format("must be in [{}, 10]", kMinContrastThreshold));
+  o.sim.c_pos = std::isnan(contrast_pos) ? contrast : contrast_pos;
+  o.sim.c_neg = std::isnan(contrast_neg) ? contrast : contrast_neg;
   if (!(refractory_ms >= 0 && refractory_ms <= 1000))
     throw InputError("", "--refractory-ms", "must be in 0..1000");
   o.sim.refractory_ns = static_cast<int64_t>(std::llround(refractory_ms * 1e6));
   o.seed = seed;
   o.sim.seed = seed;
-  o.lambda_brightness = std::min(o.lambda_brightness, contrast / 2);
+  o.lambda_brightness = std::min(o.lambda_brightness, std::min(o.sim.c_pos, o.sim.c_neg) / 2);
   try {
     o.validate();
-  } catch (const InputError& e) {  // the simulator names its own fields; ours are --contrast
-    if (e.field() == "--contrast-pos" || e.field() == "--contrast-neg")
-      throw InputError("", "--contrast", e.problem());
+  } catch (const InputError& e) {  // the simulator's field names, where ours differ
+    if (e.field() == "--refractory-ns") throw InputError("", "--refractory-ms", e.problem());
+    if (e.field() == "--leak-rate-hz") throw InputError("", "--leak-rate", e.problem());
+    if (e.field() == "--shot-noise-rate-hz") throw InputError("", "--event-noise", e.problem());
     throw;
   }
   return o;
@@ -173,20 +185,18 @@ void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensM
                                          noise_frame);
     frame.passes |= bit(Pass::DepthNoisy);
   }
-  if (has(passes, Pass::Flow) && next != nullptr) {
-    FlowField f = flowTowards(renderer, scene, lens, self, *next, true, frame);
-    frame.flow = std::move(f.flow);
-    frame.flow_valid = std::move(f.valid);
-    frame.flow_occluded = std::move(f.occluded);
-    frame.passes |= bit(Pass::Flow);
-  }
-  if (has(passes, Pass::FlowBackward) && previous != nullptr) {
-    FlowField f = flowTowards(renderer, scene, lens, self, *previous, false, frame);
-    frame.flow_bwd = std::move(f.flow);
-    frame.flow_bwd_valid = std::move(f.valid);
-    frame.flow_bwd_occluded = std::move(f.occluded);
-    frame.passes |= bit(Pass::FlowBackward);
-  }
+  auto store = [&frame](FlowField f, ImageF& flow, ImageU8& valid, ImageU8& occluded, Pass p) {
+    flow = std::move(f.flow);
+    valid = std::move(f.valid);
+    occluded = std::move(f.occluded);
+    frame.passes |= bit(p);
+  };
+  if (has(passes, Pass::Flow) && next != nullptr)
+    store(flowTowards(renderer, scene, lens, self, *next, true, frame), frame.flow,
+          frame.flow_valid, frame.flow_occluded, Pass::Flow);
+  if (has(passes, Pass::FlowBackward) && previous != nullptr)
+    store(flowTowards(renderer, scene, lens, self, *previous, false, frame), frame.flow_bwd,
+          frame.flow_bwd_valid, frame.flow_bwd_occluded, Pass::FlowBackward);
 }
 
 bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scene& scene,
@@ -246,17 +256,19 @@ bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scen
       "# Event specific definitions.\n"
       "contrast_threshold_pos: {}\n"
       "contrast_threshold_neg: {}\n"
-      "contrast_threshold_sigma: {}\n"
+      "contrast_threshold_sigma: {}  # per crossing\n"
+      "threshold_spread: {}  # per pixel, fixed\n"
       "refractory_period_ns: {}\n"
       "log_eps: {}\n"
+      "leak_rate_hz: {}\n"
       "shot_noise_rate_hz: {}\n"
       "samples: {}\n"
       "events: {}\n",
       scene_t0_ns, translationTbs(Vec3::Zero()), K.width, K.height, formatFloat(K.fx),
       formatFloat(K.fy), formatFloat(K.cx - 0.5), formatFloat(K.cy - 0.5),
       formatFloat(opt.sim.c_pos), formatFloat(opt.sim.c_neg), formatFloat(opt.sim.sigma_c),
-      opt.sim.refractory_ns, formatFloat(opt.sim.log_eps),
-      formatFloat(opt.sim.shot_noise_rate_hz), stats.samples, stats.events);
+      formatFloat(opt.sim.threshold_spread), opt.sim.refractory_ns, formatFloat(opt.sim.log_eps),
+      formatFloat(opt.sim.leak_rate_hz), formatFloat(opt.sim.shot_noise_rate_hz), stats.samples, stats.events);
   writeTextAtomic(out / "sensor.yaml", yaml);
   return true;
 }

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "render/camera.h"
@@ -46,6 +47,8 @@ struct EventArgs {
   EventCameraOptions opt;
   double refractory_ms = 0.0;
   double contrast = 0.2;
+  double contrast_pos = std::numeric_limits<double>::quiet_NaN();  ///< NaN: --contrast
+  double contrast_neg = std::numeric_limits<double>::quiet_NaN();
   void addTo(CLI::App& cmd);
   /// The options (InputError naming the flag), with `seed` for the renderer and the simulator.
   EventCameraOptions options(uint64_t seed) const;

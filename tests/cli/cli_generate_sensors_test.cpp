@@ -333,7 +333,10 @@ TEST(GenerateSensorErrors, ImpossibleCombinationsNameTheFlag) {
            {"--passes events --lens panorama --width 64", "--passes"},
            {"--passes rgb,wind", "--passes"},
            {"--stereo -1", "--stereo"},
-           {"--passes events --contrast 0", "--contrast"}}) {
+           {"--passes rgb,events --contrast 0", "--contrast"},
+           {"--passes all --contrast-neg 20", "--contrast-neg"},
+           {"--passes all --refractory-ms -1", "--refractory-ms"},
+           {"--passes all --leak-rate -2", "--leak-rate"}}) {
     const RunResult r =
         runInterinet("generate --frames 2 --no-progress " + args + " --out " + (dir / "o").string());
     EXPECT_EQ(r.exit_code, 2) << args;

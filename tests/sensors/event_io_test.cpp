@@ -13,6 +13,7 @@
 #include <numbers>
 #include <vector>
 
+#include "../expect_input_error.h"
 #include "../temp_dir.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -24,16 +25,7 @@ namespace fs = std::filesystem;
 namespace inet {
 namespace {
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError("", "", "");
-}
+using test::expectInputError;
 
 /// n sorted events from t0_ns on, steps of 0-2999 ns (runs of equal times included), random
 /// pixels of a 240 x 180 sensor and polarities.

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../expect_input_error.h"
 #include "core/error.h"
 #include "core/rng.h"
 
@@ -77,16 +78,7 @@ bool sortedTyx(const std::vector<Event>& ev) {
   });
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError("", "", "");
-}
+using test::expectInputError;
 
 // (1) L = L0 + a t at one pixel (and L0 - a t at another): events exactly at t_n = n C / a.
 // Samples are exact in float (multiples of 2^-6 every 1 ms, a = 15.625 / s), so the only error

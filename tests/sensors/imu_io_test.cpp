@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "../expect_input_error.h"
 #include "../temp_dir.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -23,17 +24,7 @@ const std::string kHeader =
 
 std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
 
-/// Runs `f` and returns the InputError it throws (fails the test if none).
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError("", "", "");
-}
+using test::expectInputError;
 
 TEST(ImuIo, CsvHeaderIsEuRoCsAndRowsReadBackExactly) {
   const Trajectory traj = test::analyticTrajectory(50'000'000, 21);
