@@ -109,6 +109,7 @@ void registerEval(CLI::App& app);
 void registerImu(CLI::App& app);
 void registerDepthNoise(CLI::App& app);
 void registerEvents(CLI::App& app);
+void registerVary(CLI::App& app);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 void addTrainStyleCommand(CLI::App* trajectory_cmd);
 

@@ -23,5 +23,6 @@ int main(int argc, char** argv) {
   inet::app::registerImu(app);
   inet::app::registerDepthNoise(app);
   inet::app::registerEvents(app);
+  inet::app::registerVary(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -12,6 +12,7 @@ PACKAGES=(
   libtorch-dev
   libhdf5-dev
   libyaml-cpp-dev
+  libbullet-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -15,7 +15,13 @@
 namespace inet {
 
 /// Named stream ids so that two stages never draw the same numbers for the same seed.
-enum class RngStream : uint32_t { PathTracer = 1, Trajectory = 2, Layout = 3, Sensor = 4 };
+enum class RngStream : uint32_t {
+  PathTracer = 1,
+  Trajectory = 2,
+  Layout = 3,
+  Sensor = 4,
+  Variation = 5,  ///< scene variants: rearrangement, lighting
+};
 
 class CounterRng {
  public:
