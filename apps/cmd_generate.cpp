@@ -30,6 +30,8 @@
 #include "trajectory/formats.h"
 #include "trajectory/free_space.h"
 #include "trajectory/random_trajectory.h"
+#include "variation/lighting.h"
+#include "variation/rearrange.h"
 
 namespace inet::app {
 namespace {
@@ -59,6 +61,7 @@ struct GenerateArgs {
   EventArgs events;
   std::string formats = "asl,tum";
   std::string sequence = "seq_000";
+  std::string config = "original";
   std::string out = "out";
   bool progress = true;
   bool denoise = false;
@@ -252,6 +255,78 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
   return m;
 }
 
+/// One scene configuration (issue 7): the layout as it is, relit (a random lighting of seed n)
+/// or rearranged (physics of seed n). Configurations of one layout share its name, so their
+/// sequences sit side by side: <sequence>, <sequence>_lighting_<n>, <sequence>_rearranged_<n>.
+struct SceneConfig {
+  enum class Kind { Original, Lighting, Rearranged } kind = Kind::Original;
+  uint64_t n = 0;
+  Scene scene;
+  std::string suffix() const {
+    if (kind == Kind::Original) return "";
+    return fmt::format("_{}_{}", kind == Kind::Lighting ? "lighting" : "rearranged", n);
+  }
+  std::string describe() const {
+    if (kind == Kind::Original) return "original";
+    return fmt::format("{}:{}", kind == Kind::Lighting ? "lighting" : "rearranged", n);
+  }
+};
+
+/// "original,lighting:1,rearranged:2" (no repeats).
+std::vector<SceneConfig> parseConfigs(const std::string& list) {
+  std::vector<SceneConfig> out;
+  for (const std::string& item : splitList(list)) {
+    SceneConfig c;
+    const size_t colon = item.find(':');
+    const std::string kind = item.substr(0, colon);
+    if (kind == "original" && colon == std::string::npos) {
+      c.kind = SceneConfig::Kind::Original;
+    } else if ((kind == "lighting" || kind == "rearranged") && colon != std::string::npos) {
+      c.kind = kind == "lighting" ? SceneConfig::Kind::Lighting : SceneConfig::Kind::Rearranged;
+      const std::string n = item.substr(colon + 1);
+      if (n.empty() || n.find_first_not_of("0123456789") != std::string::npos || n.size() > 9)
+        throw InputError("", "--config", "'" + item + "': the number after ':' is a seed 0..");
+      c.n = std::stoull(n);
+    } else {
+      throw InputError("", "--config",
+                       "'" + item + "' is not original, lighting:N or rearranged:N");
+    }
+    for (const SceneConfig& o : out)
+      if (o.describe() == c.describe())
+        throw InputError("", "--config", "'" + item + "' is listed twice");
+    out.push_back(std::move(c));
+  }
+  if (out.empty()) throw InputError("", "--config", "no configuration given");
+  return out;
+}
+
+/// The scene of a configuration.
+Scene variantOf(const Scene& original, const SceneConfig& c) {
+  if (c.kind == SceneConfig::Kind::Original) return original;
+  Scene s = original;
+  if (c.kind == SceneConfig::Kind::Lighting) {
+    RandomLightingOptions o;
+    o.seed = c.n;
+    applyLightSetup(s, randomLighting(lightSetupOf(original), o), "--config " + c.describe());
+    return s;
+  }
+  RearrangeOptions o;
+  o.seed = c.n;
+  RearrangeLog log;
+  s = rearrange(original, o, &log);
+  moveBoundLights(original, s);
+  std::fprintf(stderr, "%s: %d of %d movable objects pushed, %d moved\n", c.describe().c_str(),
+               log.selected, log.movable, log.moved);
+  return s;
+}
+
+void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPath& cam,
+                    const LensModel& lens, LensType lens_type, const SequencePasses& want,
+                    PassMask passes, const RenderOptions& opt, const ImuOptions& imu,
+                    const std::optional<ImuSequence>& imu_seq,
+                    const std::optional<PoseSpline>& spline, const EventCameraOptions& event_opt,
+                    const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats);
+
 void runGenerate(const GenerateArgs& a) {
   validateArgs(a);
   a.response.validate();
@@ -272,7 +347,6 @@ void runGenerate(const GenerateArgs& a) {
   // Load and check every input before anything is written.
   Scene scene = a.scene.load();
   const CameraPath cam = loadTrajectory(a, scene);
-  const Trajectory& traj = cam.frames;
   // the IMU and the event camera's path from the camera's continuous path, made before anything
   // is written, so that a path too short for a spline fails cleanly
   ImuOptions imu;
@@ -302,8 +376,26 @@ void runGenerate(const GenerateArgs& a) {
   opt.seed = a.seed;
   opt.passes = renderPassesFor(passes, lens_type, want.boxes);
   opt.denoise = a.denoise;
+  // every configuration's scene before the first file: the same trajectory goes through each
+  std::vector<SceneConfig> configs = parseConfigs(a.config);
+  for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  for (const SceneConfig& c : configs)
+    renderSequence(a, c, cam, lens, lens_type, want, passes, opt, imu, imu_seq, spline,
+                   event_opt, depth_noise, formats);
+}
 
-  fs::path dir = fs::path(a.out) / scene.name / a.sequence;
+/// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.
+void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPath& cam,
+                    const LensModel& lens, LensType lens_type, const SequencePasses& want,
+                    PassMask passes, const RenderOptions& opt, const ImuOptions& imu,
+                    const std::optional<ImuSequence>& imu_seq,
+                    const std::optional<PoseSpline>& spline, const EventCameraOptions& event_opt,
+                    const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats) {
+  const Scene& scene = c.scene;
+  const Trajectory& traj = cam.frames;
+  fs::path dir = fs::path(a.out) / scene.name / (a.sequence + c.suffix());
   SequenceSpec spec;
   spec.dir = dir;
   spec.intrinsics = lens.K;
@@ -312,6 +404,7 @@ void runGenerate(const GenerateArgs& a) {
   spec.rgb_exr = a.hdr;
   spec.stereo_baseline_m = a.stereo;
   spec.meta = provenance(a, scene, opt, cam);
+  spec.meta["configuration"] = c.describe();
   if (has(passes, Pass::DepthNoisy))
     spec.meta["depth_noise"] = {{"model", "Kinect-like, sensors/depth_noise.h"},
                                 {"parameters", depth_noise.toString()}};
@@ -326,8 +419,6 @@ void runGenerate(const GenerateArgs& a) {
   Shutter shutter;
   shutter.exposure_ns = static_cast<TimeNs>(std::llround(a.exposure_ms * 1e6));
   shutter.readout_ns = static_cast<TimeNs>(std::llround(a.readout_ms * 1e6));
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
 
   // which frames a killed run already finished: checked once (it stats every file of a frame)
   std::vector<char> complete(traj.size());
@@ -467,6 +558,11 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--cy", a->K.cy, "principal point, as --cx (default height/2)")
       ->each([a](const std::string&) { a->cy_set = true; });
   cmd->add_option("--sequence", a->sequence, "sequence folder name (default seq_000)");
+  cmd->add_option("--config", a->config,
+                  "comma list of scene configurations, each rendered along the same camera path: "
+                  "original, lighting:N (random lighting, seed N), rearranged:N (physics, seed "
+                  "N); e.g. original,lighting:1,rearranged:1 for the paper's three-way "
+                  "sequence; folders <sequence>_lighting_N, ... (default original)");
   cmd->add_option("--out", a->out,
                   "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
   a->response.addTo(*cmd);
