@@ -88,6 +88,16 @@ class Attrs {
   std::string file_, field_;
 };
 
+/// The optional brightness="b" of a light: a factor on its energy or radiance (the paper's
+/// light.xml keeps energy and brightness apart), >= 0, default 1. Read into the energy, so a
+/// written file states the product and brightness 1.
+double brightnessOf(const Attrs& a) {
+  if (!a.has("brightness")) return 1.0;
+  const double b = a.number("brightness");
+  if (b < 0) a.fail("brightness", "must be >= 0");
+  return b;
+}
+
 }  // namespace
 
 LightSetup lightSetupOf(const Scene& scene) {
@@ -162,7 +172,7 @@ LightSetup loadLightXml(const std::string& path) {
       e.on = a.flag("on", true);
       const Vec3 r = a.vec3("radiance");
       if (r.minCoeff() < 0) a.fail("radiance", "must be >= 0");
-      e.radiance = r.cast<float>();
+      e.radiance = (r * brightnessOf(a)).cast<float>();
       setup.areas.push_back(e);
       continue;
     }
@@ -182,7 +192,7 @@ LightSetup loadLightXml(const std::string& path) {
     }
     if (a.has("object")) l.object = a.text("object");
     l.on = a.flag("on", true);
-    l.intensity = static_cast<float>(a.number("energy"));
+    l.intensity = static_cast<float>(a.number("energy") * brightnessOf(a));
     if (l.type == LightType::Sky) {
       const std::string model = a.has("model") ? a.text("model") : "uniform";
       if (model == "preetham") {

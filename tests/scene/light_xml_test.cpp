@@ -95,6 +95,19 @@ TEST(LightXml, SwitchesAndRecoloursOneEmitter) {
   EXPECT_THROW(applyLightSetup(s, setup, "test"), InputError);
 }
 
+TEST(LightXml, BrightnessScalesEnergyAndRadiance) {
+  TempDir dir;
+  const std::string path = dir.write(
+      "b.xml",
+      R"(<lights><light name="a" type="PointLight" energy="2" brightness="1.5" position="0 0 1"/>)"
+      R"(<light type="AreaLight" object="lamp" radiance="1 2 3" brightness="0.5"/></lights>)");
+  const LightSetup s = loadLightXml(path);
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 3.f);
+  ASSERT_EQ(s.areas.size(), 1u);
+  EXPECT_EQ(s.areas[0].radiance, Vec3f(0.5f, 1.f, 1.5f));
+}
+
 TEST(LightXml, MalformedFilesNameFileAndAttribute) {
   TempDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -112,6 +125,8 @@ TEST(LightXml, MalformedFilesNameFileAndAttribute) {
        "light[0].radiance"},
       {R"(<lights><light name="a" type="SunLight" energy="1" direction="0 0 -1" on="yes"/></lights>)",
        "light[0].on"},
+      {R"(<lights><light name="a" type="SunLight" energy="1" direction="0 0 -1" brightness="-2"/></lights>)",
+       "light[0].brightness"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE(cases[i].first);
