@@ -7,8 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "../temp_dir.h"
@@ -269,13 +272,72 @@ TEST(Rearrange, DeterministicPerSeedAndLogInRanges) {
 
 #else
 
+/// One part in world coordinates: its vertices, and its face planes (n.x <= d inside) when the
+/// part is convex (every vertex on the inner side of every face, 0.1 mm), else none.
+struct WorldPart {
+  std::vector<Vec3> v;
+  std::vector<std::pair<Vec3, double>> planes;
+  Eigen::AlignedBox3d box;
+  bool sphere = false;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0;
+};
+
+WorldPart worldPart(const Scene& s, const Object& o) {
+  WorldPart w;
+  const Mesh& m = s.meshes[o.mesh];
+  const Mat4& T = o.T_world_object;
+  if (m.isSphere()) {
+    w.sphere = true;
+    w.centre = T.block<3, 1>(0, 3);
+    w.radius = m.sphere_radius * T.topLeftCorner<3, 3>().col(0).norm();
+    w.box = Eigen::AlignedBox3d(w.centre - Vec3::Constant(w.radius), w.centre + Vec3::Constant(w.radius));
+    return w;
+  }
+  for (const Vec3f& p : m.positions) {
+    w.v.push_back((T * p.cast<double>().homogeneous()).head<3>());
+    w.box.extend(w.v.back());
+  }
+  for (const Tri& t : m.triangles) {
+    const Vec3 n = (w.v[t[1]] - w.v[t[0]]).cross(w.v[t[2]] - w.v[t[0]]);
+    if (n.norm() < 1e-12) continue;
+    const Vec3 u = n.normalized();
+    w.planes.emplace_back(u, u.dot(w.v[t[0]]));
+  }
+  for (const auto& [n, d] : w.planes)
+    for (const Vec3& p : w.v)
+      if (n.dot(p) > d + 1e-4) {
+        w.planes.clear();  // not convex: no plane test
+        return w;
+      }
+  return w;
+}
+
+/// How deep (m) any vertex of `a` lies inside the convex part `b` (0 if none, or b not convex).
+double vertexDepth(const WorldPart& a, const WorldPart& b) {
+  double deepest = 0;
+  if (b.sphere) {
+    for (const Vec3& p : a.v) deepest = std::max(deepest, b.radius - (p - b.centre).norm());
+    return deepest;
+  }
+  if (b.planes.empty()) return 0;
+  for (const Vec3& p : a.v) {
+    double depth = 1e300;
+    for (const auto& [n, d] : b.planes) depth = std::min(depth, d - n.dot(p));
+    deepest = std::max(deepest, depth);
+  }
+  return deepest;
+}
+
 // The acceptance: 200 rearrangements of generated apartments (seeds 0..199): nothing
 // ends interpenetrating (> 1 cm), outside its room or floating (> 1 cm above its support); 95 %
 // of moved objects moved less than 2 m; share and accelerations in the configured ranges.
 TEST(RearrangeAcceptance, TwoHundredApartments) {
   TempDir dir("rearrange_acc");
   std::vector<double> distances;
-  double total_ms = 0, max_ms = 0, max_pen = 0;
+  double total_ms = 0, max_ms = 0, max_pen = 0, max_mesh_depth = 0;
+  size_t pairs = 0, convex_pairs = 0;  // close part pairs checked, and with a convex side
+  size_t checked_instances = 0;          // moved instances checked for support
   int pushed_moved = 0, pushed = 0, kept_static = 0;
   for (uint64_t seed = 0; seed < 200; ++seed) {
     SCOPED_TRACE(seed);
@@ -299,6 +361,64 @@ TEST(RearrangeAcceptance, TwoHundredApartments) {
         ASSERT_GE(w.z(), r.floor_z - 0.01) << o.name << " sank";
       }
     }
+    // independent interpenetration check, from the meshes and not Bullet's contacts: no vertex
+    // of a moved part more than 1 cm inside another instance's convex part, or the reverse
+    std::vector<WorldPart> parts;
+    for (const Object& o : out.objects) parts.push_back(worldPart(out, o));
+    for (size_t i = 0; i < out.objects.size(); ++i) {
+      if (out.objects[i].T_world_object == apt.scene.objects[i].T_world_object) continue;
+      for (size_t j = 0; j < out.objects.size(); ++j) {
+        if (out.objects[j].instance == out.objects[i].instance) continue;
+        if (!parts[i].box.intersects(parts[j].box)) continue;
+        const double depth = std::max(vertexDepth(parts[i], parts[j]), vertexDepth(parts[j], parts[i]));
+        ++pairs;
+        convex_pairs += !parts[j].planes.empty() || parts[j].sphere || !parts[i].planes.empty() ||
+                        parts[i].sphere;
+        max_mesh_depth = std::max(max_mesh_depth, depth);
+        EXPECT_LE(depth, 0.01) << out.objects[i].name << " inside " << out.objects[j].name;
+      }
+    }
+    // independent floating check: among each moved instance's lowest points (within 1 cm of
+    // its lowest), one is on its room's floor or in (1 cm around) another instance's part
+    std::map<int, std::vector<size_t>> moved_parts;
+    for (size_t i = 0; i < out.objects.size(); ++i)
+      if (out.objects[i].T_world_object != apt.scene.objects[i].T_world_object)
+        moved_parts[out.objects[i].instance].push_back(i);
+    for (const auto& [instance, idx] : moved_parts) {
+      std::vector<Vec3> points;
+      for (size_t i : idx) {
+        const WorldPart& w = parts[i];
+        if (w.sphere) points.push_back(w.centre - Vec3(0, 0, w.radius));
+        points.insert(points.end(), w.v.begin(), w.v.end());
+      }
+      double low = 1e300;
+      for (const Vec3& p : points) low = std::min(low, p.z());
+      // points along the mesh edges too (every 1/8): a tilted piece rests on an edge
+      for (size_t i : idx) {
+        const WorldPart& w = parts[i];
+        for (const Tri& t : out.meshes[out.objects[i].mesh].triangles)
+          for (int e = 0; e < 3; ++e)
+            for (int k = 1; k < 8; ++k)
+              points.push_back(w.v[t[e]] + (w.v[t[(e + 1) % 3]] - w.v[t[e]]) * (k / 8.0));
+      }
+      const Object& o = out.objects[idx.front()];
+      // on the floor, or some point of it lies on the top of another instance's part (within
+      // 1 cm of its top face, over it): flat on a table, or tilted over a dresser's edge
+      bool held = o.room >= 0 && std::abs(low - out.rooms[o.room].floor_z) <= 0.01;
+      for (size_t j = 0; j < out.objects.size() && !held; ++j) {
+        if (out.objects[j].instance == instance) continue;
+        const Eigen::AlignedBox3d& bx = parts[j].box;
+        for (const Vec3& p : points)
+          if (std::abs(p.z() - bx.max().z()) <= 0.01 && p.x() >= bx.min().x() - 0.01 &&
+              p.x() <= bx.max().x() + 0.01 && p.y() >= bx.min().y() - 0.01 &&
+              p.y() <= bx.max().y() + 0.01) {
+            held = true;
+            break;
+          }
+      }
+      EXPECT_TRUE(held) << o.name << " floats: its lowest point is at z = " << low;
+      ++checked_instances;
+    }
     for (const RearrangeEntry& e : log.entries) {
       if (e.moved) distances.push_back(e.distance_m);
       pushed += e.pushed;
@@ -317,10 +437,13 @@ TEST(RearrangeAcceptance, TwoHundredApartments) {
   std::sort(distances.begin(), distances.end());
   std::printf("200 rearrangements: %zu moved objects (%d of %d pushed ones moved), %.1f %% under "
               "2 m, median %.3f m, max %.3f m; deepest contact %.4f m; %d hung movables kept "
-              "static; rearrange time mean %.1f ms, max %.1f ms\n",
+              "static; rearrange time mean %.1f ms, max %.1f ms; deepest vertex inside another "
+              "convex part %.4f m (%zu close part pairs, %zu with a convex side); %zu moved "
+              "instances held up\n",
               distances.size(), pushed_moved, pushed, 100 * frac,
               distances[distances.size() / 2], distances.back(), max_pen, kept_static,
-              total_ms / 200, max_ms);
+              total_ms / 200, max_ms, max_mesh_depth, pairs, convex_pairs, checked_instances);
+  EXPECT_GT(convex_pairs, pairs / 2) << "the mesh check must see most pairs";
   EXPECT_GE(frac, 0.95);
 }
 
