@@ -39,12 +39,8 @@ void runEvents(const EventsCliArgs& a) {
   const Scene scene = a.scene.load();
   checkOutputFolder(a.out);
   // the event camera's field of view through a cam0 of its own size
-  CameraIntrinsics K;
-  K.width = opt.width;
-  K.height = opt.height;
-  K.fx = K.fy = opt.width / 2.0 / std::tan(a.hfov_deg * M_PI / 360.0);
-  K.cx = opt.width / 2.0;
-  K.cy = opt.height / 2.0;
+  const CameraIntrinsics K = CameraIntrinsics::centred(
+      opt.width, opt.height, opt.width / 2.0 / std::tan(a.hfov_deg * M_PI / 360.0));
   Renderer renderer(scene);
   writeEventsFolder(a.out, renderer, scene, K, spline, spline.startNs(), spline.endNs(),
                     traj.poses.front().t_ns, opt, a.progress);

@@ -342,6 +342,7 @@ void runGenerate(const GenerateArgs& a) {
     throw InputError("", "--stereo", "the baseline must be in 0..10 m");
   const bool want_imu = want.imu && a.imu_rate > 0;
   const EventCameraOptions event_opt = a.events.options(a.seed);
+  std::vector<SceneConfig> configs = parseConfigs(a.config);
   const KinectNoiseOptions depth_noise;
   std::vector<std::string> formats = splitList(a.formats);
   // Load and check every input before anything is written.
@@ -377,7 +378,6 @@ void runGenerate(const GenerateArgs& a) {
   opt.passes = renderPassesFor(passes, lens_type, want.boxes);
   opt.denoise = a.denoise;
   // every configuration's scene before the first file: the same trajectory goes through each
-  std::vector<SceneConfig> configs = parseConfigs(a.config);
   for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);

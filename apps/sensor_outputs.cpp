@@ -97,23 +97,22 @@ void EventArgs::addTo(CLI::App& cmd) {
   cmd.add_option("--threshold-spread", opt.sim.threshold_spread,
                  "std of each pixel's fixed threshold around the nominal one (v2e's mismatch, "
                  "0.03 there; default 0)");
-  cmd.add_option("--leak-rate", opt.sim.leak_rate_hz,
+  cmd.add_option("--leak-rate-hz", opt.sim.leak_rate_hz,
                  "leak events per pixel and second (v2e 0.01-0.2; default 0)");
   cmd.add_option("--contrast-sigma", opt.sim.sigma_c,
                  "threshold noise per pixel and interval, std (default 0.021, ESIM)");
   cmd.add_option("--refractory-ms", refractory_ms,
                  "refractory period per pixel in ms (default 0, ESIM; v2e uses 0.5)");
-  cmd.add_option("--event-noise", opt.sim.shot_noise_rate_hz,
+  cmd.add_option("--shot-noise-rate-hz", opt.sim.shot_noise_rate_hz,
                  "shot-noise events per pixel and second (default 0 = none; v2e 0.001)");
 }
 
 EventCameraOptions EventArgs::options(uint64_t seed) const {
   EventCameraOptions o = opt;
-  const std::pair<double, const char*> thresholds[] = {
-      {contrast, "--contrast"}, {contrast_pos, "--contrast-pos"}, {contrast_neg, "--contrast-neg"}};
-  for (const auto& [c, flag] : thresholds)
-    if (!std::isnan(c) && !(c >= kMinContrastThreshold && c <= 10))
-      throw InputError("", flag, fmt::format("must be in [{}, 10]", kMinContrastThreshold));
+  // --contrast sets both thresholds; the simulator checks them under its own names, which are
+  // the flags --contrast-pos and --contrast-neg (as all its fields are flags here)
+  if (!(contrast >= kMinContrastThreshold && contrast <= 10))
+    throw InputError("", "--contrast", fmt::format("must be in [{}, 10]", kMinContrastThreshold));
   o.sim.c_pos = std::isnan(contrast_pos) ? contrast : contrast_pos;
   o.sim.c_neg = std::isnan(contrast_neg) ? contrast : contrast_neg;
   if (!(refractory_ms >= 0 && refractory_ms <= 1000))
@@ -122,14 +121,7 @@ EventCameraOptions EventArgs::options(uint64_t seed) const {
   o.seed = seed;
   o.sim.seed = seed;
   o.lambda_brightness = std::min(o.lambda_brightness, std::min(o.sim.c_pos, o.sim.c_neg) / 2);
-  try {
-    o.validate();
-  } catch (const InputError& e) {  // the simulator's field names, where ours differ
-    if (e.field() == "--refractory-ns") throw InputError("", "--refractory-ms", e.problem());
-    if (e.field() == "--leak-rate-hz") throw InputError("", "--leak-rate", e.problem());
-    if (e.field() == "--shot-noise-rate-hz") throw InputError("", "--event-noise", e.problem());
-    throw;
-  }
+  o.validate();
   return o;
 }
 
@@ -185,18 +177,14 @@ void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensM
                                          noise_frame);
     frame.passes |= bit(Pass::DepthNoisy);
   }
-  auto store = [&frame](FlowField f, ImageF& flow, ImageU8& valid, ImageU8& occluded, Pass p) {
-    flow = std::move(f.flow);
-    valid = std::move(f.valid);
-    occluded = std::move(f.occluded);
-    frame.passes |= bit(p);
-  };
-  if (has(passes, Pass::Flow) && next != nullptr)
-    store(flowTowards(renderer, scene, lens, self, *next, true, frame), frame.flow,
-          frame.flow_valid, frame.flow_occluded, Pass::Flow);
-  if (has(passes, Pass::FlowBackward) && previous != nullptr)
-    store(flowTowards(renderer, scene, lens, self, *previous, false, frame), frame.flow_bwd,
-          frame.flow_bwd_valid, frame.flow_bwd_occluded, Pass::FlowBackward);
+  if (has(passes, Pass::Flow) && next != nullptr) {
+    frame.flow = flowTowards(renderer, scene, lens, self, *next, true, frame);
+    frame.passes |= bit(Pass::Flow);
+  }
+  if (has(passes, Pass::FlowBackward) && previous != nullptr) {
+    frame.flow_bwd = flowTowards(renderer, scene, lens, self, *previous, false, frame);
+    frame.passes |= bit(Pass::FlowBackward);
+  }
 }
 
 bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scene& scene,

@@ -95,7 +95,7 @@ Eigen::Vector3f blackbodyRgb(double kelvin) {
   xyz_to_srgb << 3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570;
   Eigen::Vector3d rgb = (xyz_to_srgb * xyz).cwiseMax(0.0);
   // rescale to luminance 1 after clipping (Rec. 709 luminance weights)
-  double y = 0.2126 * rgb.x() + 0.7152 * rgb.y() + 0.0722 * rgb.z();
+  double y = luminance(rgb);
   return (rgb / y).cast<float>();
 }
 

@@ -7,6 +7,14 @@
 
 namespace inet {
 
+/// Luminance Y of a linear Rec. 709 / sRGB colour (the Y row of the RGB -> XYZ matrix, IEC
+/// 61966-2-1), computed in the colour's own scalar type.
+template <class V>
+typename V::Scalar luminance(const V& c) {
+  using S = typename V::Scalar;
+  return S(0.2126) * c.x() + S(0.7152) * c.y() + S(0.0722) * c.z();
+}
+
 /// sRGB opto-electronic transfer function (IEC 61966-2-1) of a linear value in [0, 1].
 double srgbOetf(double linear);
 

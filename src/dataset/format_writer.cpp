@@ -176,31 +176,31 @@ FrameEncoder rawPng(Pass pass) {
 }
 
 namespace {
-/// A flow pass of a frame as a FlowField (copies: the files' writers take that type).
-FlowField flowOf(const Frame& f, Pass pass) {
-  if (pass == Pass::Flow) return FlowField{f.flow, f.flow_valid, f.flow_occluded};
-  INET_CHECK_MSG(pass == Pass::FlowBackward, "a flow encoder takes flow or flow_bwd");
-  return FlowField{f.flow_bwd, f.flow_bwd_valid, f.flow_bwd_occluded};
+/// The flow field of a flow pass.
+const FlowField& flowOf(const Frame& f, Pass pass) {
+  INET_CHECK_MSG(pass == Pass::Flow || pass == Pass::FlowBackward,
+                 "a flow encoder takes flow or flow_bwd");
+  return pass == Pass::Flow ? f.flow : f.flow_bwd;
 }
 }  // namespace
 
 FrameEncoder flowFlo(Pass pass) {
-  flowOf(Frame{}, pass);  // checks the pass
+  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
   return {pass, "flo/" + passName(pass),
           [pass](const fs::path& p, const FrameView& v) { writeFlo(p, flowOf(v.frame, pass)); }};
 }
 
 FrameEncoder flowKittiPng(Pass pass) {
-  flowOf(Frame{}, pass);
+  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
   return {pass, "png16-kitti/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
             writeKittiFlowPng(p, flowOf(v.frame, pass));
           }};
 }
 
 FrameEncoder flowOcclusionPng(Pass pass) {
-  flowOf(Frame{}, pass);
+  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
   return {pass, "png8-occlusion/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
-            ImageU8 mask = pass == Pass::Flow ? v.frame.flow_occluded : v.frame.flow_bwd_occluded;
+            ImageU8 mask = flowOf(v.frame, pass).occluded;
             for (uint8_t& m : mask.data) m = m ? 255 : 0;
             writePng(p, mask);
           }};

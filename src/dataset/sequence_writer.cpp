@@ -90,14 +90,14 @@ void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const 
   if (has(mask, Pass::Shading)) checkImage(f.shading, Pass::Shading, 3, K, k);
   if (has(mask, Pass::DepthNoisy)) checkImage(f.depth_noisy, Pass::DepthNoisy, 1, K, k);
   if (has(mask, Pass::Flow)) {
-    checkImage(f.flow, Pass::Flow, 2, K, k);
-    checkImage(f.flow_valid, Pass::Flow, 1, K, k);
-    checkImage(f.flow_occluded, Pass::Flow, 1, K, k);
+    checkImage(f.flow.flow, Pass::Flow, 2, K, k);
+    checkImage(f.flow.valid, Pass::Flow, 1, K, k);
+    checkImage(f.flow.occluded, Pass::Flow, 1, K, k);
   }
   if (has(mask, Pass::FlowBackward)) {
-    checkImage(f.flow_bwd, Pass::FlowBackward, 2, K, k);
-    checkImage(f.flow_bwd_valid, Pass::FlowBackward, 1, K, k);
-    checkImage(f.flow_bwd_occluded, Pass::FlowBackward, 1, K, k);
+    checkImage(f.flow_bwd.flow, Pass::FlowBackward, 2, K, k);
+    checkImage(f.flow_bwd.valid, Pass::FlowBackward, 1, K, k);
+    checkImage(f.flow_bwd.occluded, Pass::FlowBackward, 1, K, k);
   }
 }
 

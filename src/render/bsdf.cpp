@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/color.h"
 #include "render/microfacet.h"
 
 namespace inet {
@@ -18,9 +19,6 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInvPi = 1.0f / kPi;
 constexpr float kMinCos = 1e-7f;  // |wo.z| below this: wo lies in the tangent plane
 
-float luminance(const Vec3f& c) {
-  return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
-}
 Vec3f flipZ(Vec3f v) {
   v.z() = -v.z();
   return v;

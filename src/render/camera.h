@@ -19,6 +19,12 @@ struct CameraIntrinsics {
   double cx = 320.0;  ///< renderer convention (pixel centres at +0.5)
   double cy = 240.0;
 
+  /// A width x height pinhole with square pixels of focal length f (pixels) and the principal
+  /// point at the image centre.
+  static CameraIntrinsics centred(int width, int height, double f) {
+    return {width, height, f, f, width / 2.0, height / 2.0};
+  }
+
   double cxOpenCV() const { return cx - 0.5; }
   double cyOpenCV() const { return cy - 0.5; }
   /// Direction in the camera frame through continuous image point (u, v), with z = 1, so that a

@@ -1,5 +1,7 @@
 #include "render/frame.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -24,6 +26,20 @@ std::string passName(Pass p) {
   for (const auto& e : kPasses)
     if (e.pass == p) return e.name;
   return "?";
+}
+
+std::string FlowField::toString() const {
+  size_t valid_px = 0, occluded_px = 0;
+  double largest = 0;
+  for (size_t i = 0; i < valid.data.size(); ++i) {
+    if (!valid.data[i]) continue;
+    ++valid_px;
+    largest = std::max(largest, std::hypot(double{flow.data[2 * i]}, double{flow.data[2 * i + 1]}));
+  }
+  for (uint8_t o : occluded.data) occluded_px += o != 0;
+  return fmt::format("FlowField[{}x{}, {} valid, {} occluded{}, max |flow| {:.3f} px]", width(),
+                     height(), valid_px, occluded_px, occluded.empty() ? " (unknown)" : "",
+                     largest);
 }
 
 PassMask parsePassList(const std::string& list, const std::string& where) {

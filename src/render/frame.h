@@ -23,10 +23,8 @@ enum class Pass : uint32_t {
                        ///< RGB variation), 3 x float; derived from the RGB pass, not exact
   // Derived by the sensor stage from the passes above (the renderer ignores these bits):
   DepthNoisy = 1u << 8,  ///< Kinect-like z-depth (sensors/depth_noise.h), metres, 0 = no return
-  Flow = 1u << 9,        ///< forward optical flow to the next frame (sensors/optical_flow.h):
-                         ///< flow (2 x float, px), flow_valid and flow_occluded (1 x uint8)
-  FlowBackward = 1u << 10,  ///< backward flow to the previous frame: flow_bwd, flow_bwd_valid,
-                            ///< flow_bwd_occluded, as Flow
+  Flow = 1u << 9,        ///< forward optical flow to the next frame (sensors/optical_flow.h)
+  FlowBackward = 1u << 10,  ///< backward optical flow to the previous frame
 };
 using PassMask = uint32_t;
 /// What the renderer makes: RGB, the exact ground truth and shading.
@@ -45,6 +43,20 @@ std::string passName(Pass p);
 /// Parses "rgb,depth,..." or "all" into a mask; throws InputError(where, "--passes", ...).
 PassMask parsePassList(const std::string& list, const std::string& where);
 
+/// A dense optical flow field with its masks, all width x height (sensors/optical_flow.h).
+struct FlowField {
+  ImageF flow;       ///< 2 channels (u, v), pixels, +u right, +v down; 0 where valid == 0
+  ImageU8 valid;     ///< 1 = the pixel has depth and its point has an image in the other frame
+                     ///< (possibly outside the image bounds)
+  ImageU8 occluded;  ///< 1 = the pixel has depth but its point is not visible in the other frame
+                     ///< (hidden, behind the camera, outside the image); empty when read from a
+                     ///< file (neither format stores it)
+  int width() const { return flow.width; }
+  int height() const { return flow.height; }
+  /// Size, valid and occluded pixel counts, largest valid |flow|.
+  std::string toString() const;
+};
+
 struct Frame {
   PassMask passes = 0;
   ImageF rgb;         ///< 3 channels
@@ -56,12 +68,8 @@ struct Frame {
   ImageF albedo;      ///< 3 channels
   ImageF shading;     ///< 3 channels
   ImageF depth_noisy;     ///< 1 channel, metres, 0 = no return
-  ImageF flow;            ///< 2 channels (u, v), pixels, frame k -> k + 1
-  ImageU8 flow_valid;     ///< 1 channel, 1 = a surface whose point has an image in frame k + 1
-  ImageU8 flow_occluded;  ///< 1 channel, 1 = hidden in frame k + 1 or leaves its image
-  ImageF flow_bwd;            ///< 2 channels (u, v), pixels, frame k -> k - 1
-  ImageU8 flow_bwd_valid;     ///< as flow_valid, towards frame k - 1
-  ImageU8 flow_bwd_occluded;  ///< as flow_occluded, towards frame k - 1
+  FlowField flow;      ///< frame k -> k + 1
+  FlowField flow_bwd;  ///< frame k -> k - 1
 };
 
 }  // namespace inet

@@ -1,5 +1,6 @@
 #include "render/lights.h"
 
+#include "core/color.h"
 #include "render/bsdf.h"
 
 #include <algorithm>
@@ -11,9 +12,6 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 
-float luminance(const Vec3f& c) {
-  return 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
-}
 
 float smoothstep(float a, float b, float x) {
   if (a >= b) return x >= b ? 1.f : 0.f;

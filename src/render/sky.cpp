@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/color.h"
 #include "core/error.h"
 
 namespace inet {
@@ -11,10 +12,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Luminance of linear sRGB: the Y row of the Rec. 709 RGB -> XYZ matrix.
-double luminance(const Eigen::Vector3d& c) {
-  return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
-}
 
 // The importance-sampling grid: 1.4 degrees square at the horizon, fine enough for the
 // circumsolar peak (its Perez term falls as exp(D gamma), D about -2 per radian).

@@ -17,27 +17,6 @@ double seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
-/// The 99th percentile over pixels of |dL/dt| between two samples, 1/s. ESIM takes the maximum;
-/// a path-traced image keeps some Monte Carlo error that changes as the view moves, and the
-/// maximum would then follow its single worst pixel and drive the step to the minimum.
-double robustLogIntensityRate(const ImageF& L_prev, int64_t t_prev, const ImageF& L, int64_t t) {
-  std::vector<float> d(L.pixelCount());
-  for (size_t i = 0; i < d.size(); ++i) d[i] = std::abs(L.data[i] - L_prev.data[i]);
-  const size_t q = std::min(d.size() - 1, static_cast<size_t>(0.99 * d.size()));
-  std::nth_element(d.begin(), d.begin() + q, d.end());
-  return d[q] / ((t - t_prev) * 1e-9);
-}
-
-/// Luminance (Rec. 709 weights, as logIntensityImage) times the exposure.
-ImageF intensityOf(const ImageF& rgb, double exposure) {
-  ImageF out(rgb.width, rgb.height, 1);
-  for (size_t i = 0; i < out.pixelCount(); ++i) {
-    const float* p = rgb.data.data() + 3 * i;
-    out.data[i] = static_cast<float>(exposure * (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]));
-  }
-  return out;
-}
-
 }  // namespace
 
 void EventCameraOptions::validate(const std::string& source) const {
@@ -64,13 +43,8 @@ void EventCameraOptions::validate(const std::string& source) const {
 }
 
 CameraIntrinsics eventIntrinsics(const CameraIntrinsics& K, int width, int height) {
-  CameraIntrinsics e;
-  e.width = width;
-  e.height = height;
-  e.fx = e.fy = K.fx * width / K.width;  // same horizontal field of view, square pixels
-  e.cx = width / 2.0;
-  e.cy = height / 2.0;
-  return e;
+  // the same horizontal field of view, square pixels
+  return CameraIntrinsics::centred(width, height, K.fx * width / K.width);
 }
 
 EventRunStats simulateEventCamera(const Renderer& renderer, const CameraIntrinsics& K,
@@ -119,8 +93,8 @@ EventRunStats simulateEventCamera(const Renderer& renderer, const CameraIntrinsi
     // frame index 0 every time: the same random numbers at every step (header comment)
     renderer.render(lens, CameraExposure::fixed(T_wc, t - scene_t0_ns), ro, 0, frame);
     render_s += seconds(std::chrono::steady_clock::now() - r0);
-    const ImageF intensity = intensityOf(frame.rgb, opt.exposure);
-    const ImageF L = logIntensityImage(intensity, opt.sim.log_eps);
+    const ImageF intensity = luminanceImage(frame.rgb, opt.exposure);
+    ImageF L = logIntensityImage(intensity, opt.sim.log_eps);
     events.clear();
     stats.events += sim.addSample(t, L, events, "event camera");
     ++stats.samples;
@@ -131,9 +105,9 @@ EventRunStats simulateEventCamera(const Renderer& renderer, const CameraIntrinsi
     const double flow_speed = maxFlowSpeed(frame.depth_z, K, cameraVelocity(s));
     int64_t dt = nextSampleInterval(flow_speed, flow_mode);
     if (brightness && !L_prev.empty() && t > t_prev)
-      dt = std::min(dt,
-                    nextSampleInterval(robustLogIntensityRate(L_prev, t_prev, L, t), bright_mode));
-    L_prev = L;
+      dt = std::min(dt, nextSampleInterval(logIntensityRate(L_prev, t_prev, L, t, 0.99),
+                                           bright_mode));
+    L_prev = std::move(L);
     t_prev = t;
     dt = std::max<int64_t>(dt, 1);
     const int64_t next = std::min(t + dt, t_end_ns);

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/rng.h"
 
@@ -70,7 +71,11 @@ double logIntensity(float linear_luminance, double eps) {
   return std::log(eps + (i > 0 ? i : (std::isnan(i) ? i : 0.0)));
 }
 
-ImageF logIntensityImage(const ImageF& linear, double eps) {
+namespace {
+
+/// Per pixel f(luminance) of a 1-, 3- or 4-channel linear image, into one channel.
+template <class F>
+ImageF mapLuminance(const ImageF& linear, F f) {
   INET_CHECK_MSG(linear.channels == 1 || linear.channels == 3 || linear.channels == 4,
                  fmt::format("{} channels (1, 3 or 4 expected)", linear.channels));
   ImageF out(linear.width, linear.height, 1);
@@ -78,12 +83,21 @@ ImageF logIntensityImage(const ImageF& linear, double eps) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < linear.width; ++x) {
         const float* c = linear.pixel(x, y);
-        const float lum =
-            linear.channels == 1 ? c[0] : 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
-        out.at(x, y) = static_cast<float>(logIntensity(lum, eps));
+        out.at(x, y) = f(linear.channels == 1 ? c[0] : luminance(Eigen::Map<const Eigen::Vector3f>(c)));
       }
   });
   return out;
+}
+
+}  // namespace
+
+ImageF luminanceImage(const ImageF& linear, double scale) {
+  return mapLuminance(linear, [scale](float y) { return static_cast<float>(scale * y); });
+}
+
+ImageF logIntensityImage(const ImageF& linear, double eps) {
+  return mapLuminance(linear,
+                      [eps](float y) { return static_cast<float>(logIntensity(y, eps)); });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -311,15 +325,18 @@ std::string AdaptiveSamplingOptions::toString() const {
                      min_rate_hz);
 }
 
-double maxLogIntensityRate(const ImageF& L_prev, int64_t t_prev_ns, const ImageF& L_cur,
-                           int64_t t_cur_ns) {
+double logIntensityRate(const ImageF& L_prev, int64_t t_prev_ns, const ImageF& L_cur,
+                        int64_t t_cur_ns, double quantile) {
   INET_CHECK(t_cur_ns > t_prev_ns);
   INET_CHECK(L_prev.channels == 1 && L_cur.channels == 1 && L_prev.width == L_cur.width &&
-             L_prev.height == L_cur.height);
-  double max_diff = 0;
-  for (size_t i = 0; i < L_cur.data.size(); ++i)
-    max_diff = std::max(max_diff, std::abs(static_cast<double>(L_cur.data[i]) - L_prev.data[i]));
-  return max_diff / (static_cast<double>(t_cur_ns - t_prev_ns) * 1e-9);
+             L_prev.height == L_cur.height && !L_cur.data.empty());
+  INET_CHECK(quantile > 0 && quantile <= 1);
+  std::vector<double> diff(L_cur.data.size());
+  for (size_t i = 0; i < diff.size(); ++i)
+    diff[i] = std::abs(static_cast<double>(L_cur.data[i]) - L_prev.data[i]);
+  const size_t q = std::min(diff.size() - 1, static_cast<size_t>(quantile * diff.size()));
+  std::nth_element(diff.begin(), diff.begin() + q, diff.end());
+  return diff[q] / (static_cast<double>(t_cur_ns - t_prev_ns) * 1e-9);
 }
 
 int64_t nextSampleInterval(double max_speed, const AdaptiveSamplingOptions& opts) {

@@ -118,6 +118,9 @@ double logIntensity(float linear_luminance, double eps);
 /// (alpha ignored) = Rec. 709 / sRGB-primaries luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
 /// The input must be LINEAR (not gamma encoded) with 1 = white: divide 8-bit data by 255.
 ImageF logIntensityImage(const ImageF& linear, double eps);
+/// One-channel luminance (as logIntensityImage reads it) of a 1-, 3- or 4-channel linear image,
+/// times `scale`.
+ImageF luminanceImage(const ImageF& linear, double scale = 1.0);
 
 /// Stateful per-pixel simulator: feed log-intensity samples in increasing time order.
 /// Not thread-safe itself; addSample parallelises over rows internally (TBB).
@@ -200,10 +203,12 @@ struct AdaptiveSamplingOptions {
   std::string toString() const;
 };
 
-/// max over pixels of |L_cur - L_prev| / (t_cur - t_prev), in 1/s (brightness-mode input,
-/// estimated from the last two samples). Requires t_cur > t_prev and equal 1-channel sizes.
-double maxLogIntensityRate(const ImageF& L_prev, int64_t t_prev_ns, const ImageF& L_cur,
-                           int64_t t_cur_ns);
+/// |L_cur - L_prev| / (t_cur - t_prev) in 1/s (brightness-mode input, estimated from the last
+/// two samples) at the given quantile over pixels: 1 = the maximum (ESIM); below 1 ignores the
+/// few pixels with the largest change (e.g. the Monte Carlo error of a rendered image). Requires
+/// t_cur > t_prev and equal, non-empty 1-channel sizes.
+double logIntensityRate(const ImageF& L_prev, int64_t t_prev_ns, const ImageF& L_cur,
+                        int64_t t_cur_ns, double quantile = 1.0);
 
 /// The next sampling interval in ns for `max_speed`: max |dL/dt| in 1/s (Mode::Brightness) or
 /// the largest optical-flow magnitude in px/s (Mode::Flow). Speed 0 -> 1 / min_rate_hz; NaN

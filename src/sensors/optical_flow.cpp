@@ -97,20 +97,6 @@ bool visibleAt(const FlowFrameView& to, bool check_instance, bool wrap_u, const 
 
 }  // namespace
 
-std::string FlowField::toString() const {
-  size_t valid_px = 0, occluded_px = 0;
-  double largest = 0;
-  for (size_t i = 0; i < valid.data.size(); ++i) {
-    if (!valid.data[i]) continue;
-    ++valid_px;
-    largest = std::max(largest, std::hypot(double{flow.data[2 * i]}, double{flow.data[2 * i + 1]}));
-  }
-  for (uint8_t o : occluded.data) occluded_px += o != 0;
-  return fmt::format("FlowField[{}x{}, {} valid, {} occluded{}, max |flow| {:.3f} px]", width(),
-                     height(), valid_px, occluded_px, occluded.empty() ? " (unknown)" : "",
-                     largest);
-}
-
 ObjectMotion ObjectMotion::inverse() const {
   ObjectMotion inv;
   for (const auto& [id, d] : delta) inv.delta.emplace(id, d.inverse());

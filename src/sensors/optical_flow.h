@@ -47,6 +47,7 @@
 #include "core/image.h"
 #include "core/pose.h"
 #include "render/camera.h"
+#include "render/frame.h"
 #include "render/lens.h"
 #include "sensors/bspline.h"
 
@@ -54,19 +55,7 @@ namespace inet {
 
 struct Scene;
 
-/// A dense flow field with its masks, all width x height.
-struct FlowField {
-  ImageF flow;       ///< 2 channels (u, v), pixels, +u right, +v down; 0 where valid == 0
-  ImageU8 valid;     ///< 1 = the pixel has depth and its point has an image in the other frame
-                     ///< (possibly outside the image bounds)
-  ImageU8 occluded;  ///< 1 = the pixel has depth but its point is not visible in the other frame
-                     ///< (hidden, behind the camera, outside the image); empty when read from a
-                     ///< file (neither format stores it)
-  int width() const { return flow.width; }
-  int height() const { return flow.height; }
-  /// Size, valid and occluded pixel counts, largest valid |flow|.
-  std::string toString() const;
-};
+// FlowField (the flow and its masks) is in render/frame.h, so that a Frame can carry it.
 
 /// Rigid motion of the moving instances between two scene times t0 -> t1: a world point on
 /// instance i at t0 is at delta.at(i) * p at t1 (delta = T_world_object(t1) T_world_object(t0)^-1;

@@ -158,9 +158,9 @@ LightSetup randomLighting(const LightSetup& base, const RandomLightingOptions& o
     Vec3f color = Vec3f::Ones();
     draw(i, on, scale, color, temperature);
     // an area light has a radiance, not a temperature: keep its luminance, take the colour
-    const float lum = 0.2126f * a.radiance.x() + 0.7152f * a.radiance.y() + 0.0722f * a.radiance.z();
-    Vec3f c = temperature > 0 ? Vec3f(blackbodyRgb(temperature)) : color;
-    const float c_lum = 0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z();
+    const float lum = luminance(a.radiance);
+    const Vec3f c = temperature > 0 ? Vec3f(blackbodyRgb(temperature)) : color;
+    const float c_lum = luminance(c);
     if (c_lum > 0) a.radiance = c * (lum * scale / c_lum);
     a.on = on;
     on_count += on;

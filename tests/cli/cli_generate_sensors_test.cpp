@@ -336,7 +336,7 @@ TEST(GenerateSensorErrors, ImpossibleCombinationsNameTheFlag) {
            {"--passes rgb,events --contrast 0", "--contrast"},
            {"--passes all --contrast-neg 20", "--contrast-neg"},
            {"--passes all --refractory-ms -1", "--refractory-ms"},
-           {"--passes all --leak-rate -2", "--leak-rate"}}) {
+           {"--passes all --leak-rate-hz -2", "--leak-rate-hz"}}) {
     const RunResult r =
         runInterinet("generate --frames 2 --no-progress " + args + " --out " + (dir / "o").string());
     EXPECT_EQ(r.exit_code, 2) << args;

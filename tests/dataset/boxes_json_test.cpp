@@ -35,12 +35,7 @@ TEST(BoxesJson, BoxesContainTheirVisiblePixelsInRealRenders) {
   const Scene scene = makeDefaultScene();
   const auto boxes = instanceBoxes(scene);
   const Trajectory traj = builtinTrajectory(4, 2.0);  // four views half a second apart
-  CameraIntrinsics K;
-  K.width = 160;
-  K.height = 120;
-  K.fx = K.fy = 150;
-  K.cx = 80;
-  K.cy = 60;
+  const CameraIntrinsics K = CameraIntrinsics::centred(160, 120, 150);
   Renderer r(scene);
   std::vector<std::vector<InstanceVisibility>> visible;
   std::vector<ImageU16> instance_images;

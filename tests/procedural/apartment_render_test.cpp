@@ -19,12 +19,7 @@ namespace {
 
 /// Renders a 32x24 frame at 1 spp and returns the NYU40 classes in view and the mean colour.
 std::pair<std::set<int>, double> renderSmall(const Renderer& r, const Pose& T_world_camera) {
-  CameraIntrinsics K;
-  K.width = 32;
-  K.height = 24;
-  K.fx = K.fy = 20;
-  K.cx = 16;
-  K.cy = 12;
+  const CameraIntrinsics K = CameraIntrinsics::centred(32, 24, 20);
   RenderOptions opt;
   opt.spp = 1;
   opt.passes = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Label);

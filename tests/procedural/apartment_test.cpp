@@ -150,12 +150,7 @@ TEST(Apartment, BuildsAndRendersWithLabels) {
   for (const auto& p : room.outline) b.extend(p);
   const Eigen::Vector2d c = b.center();
   const Vec3 eye(c.x(), c.y(), 1.5), target(b.max().x(), c.y(), 1.0);
-  CameraIntrinsics K;
-  K.width = 64;
-  K.height = 48;
-  K.fx = K.fy = 40;
-  K.cx = 32;
-  K.cy = 24;
+  const CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 40);
   RenderOptions opt;
   opt.spp = 4;
   opt.passes = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Label) |

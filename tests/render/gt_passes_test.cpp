@@ -225,21 +225,11 @@ TEST_F(GroundTruthTest, OddImageSizesAndOffCentrePrincipalPoint) {
 namespace inet {
 namespace {
 
-CameraIntrinsics centredCamera(int width, int height, double f) {
-  CameraIntrinsics K;
-  K.width = width;
-  K.height = height;
-  K.fx = K.fy = f;
-  K.cx = width / 2.0;
-  K.cy = height / 2.0;
-  return K;
-}
-
 // Rolling shutter: with the camera moving during readout, row y of the ground truth must equal
 // row y of a static render from the pose at the middle of that row's exposure.
 TEST_F(GroundTruthTest, RollingShutterRowsUseTheirOwnPose) {
   Renderer r(scene_);
-  const CameraIntrinsics K = centredCamera(64, 48, 60);
+  const CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 60);
   CameraExposure ex;
   ex.T_world_camera_open = pose_;
   ex.T_world_camera_close = Pose::lookAt(Vec3(0.3, 0.1, 1.05), Vec3(0.5, 5, 1), Vec3::UnitZ());
@@ -269,7 +259,7 @@ TEST_F(GroundTruthTest, RollingShutterRowsUseTheirOwnPose) {
 // A shutter without motion changes nothing: same bytes as the static camera.
 TEST_F(GroundTruthTest, StillExposureEqualsStaticCamera) {
   Renderer r(scene_);
-  const CameraIntrinsics K = centredCamera(40, 30, 40);
+  const CameraIntrinsics K = CameraIntrinsics::centred(40, 30, 40);
   RenderOptions opt;
   opt.spp = 4;
   CameraExposure ex = CameraExposure::fixed(pose_);

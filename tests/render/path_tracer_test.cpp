@@ -39,16 +39,6 @@ Scene furnace(float albedo, float emission) {
   return s;
 }
 
-CameraIntrinsics smallCamera(int w, int h, double f) {
-  CameraIntrinsics K;
-  K.width = w;
-  K.height = h;
-  K.fx = K.fy = f;
-  K.cx = w / 2.0;
-  K.cy = h / 2.0;
-  return K;
-}
-
 RenderOptions rgbOnly(int spp, int max_bounces) {
   RenderOptions opt;
   opt.spp = spp;
@@ -67,7 +57,7 @@ double meanOf(const ImageF& img) {
 TEST(PathTracer, FurnaceConvergesToAnalyticRadiance) {
   Scene s = furnace(0.5f, 1.0f);
   Renderer r(s);
-  CameraIntrinsics K = smallCamera(64, 48, 60);
+  CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 60);
   RenderOptions opt = rgbOnly(64, 64);
   Frame f;
   r.render(K, Pose::lookAt(Vec3(0.3, -0.2, 1.1), Vec3(1, 1, 0.8), Vec3::UnitZ()), opt, 0, f);
@@ -116,7 +106,7 @@ TEST(PathTracer, WhiteFurnaceSphere) {
     s.lights = {sky};
     s.validate("furnace");
     Renderer r(s);
-    CameraIntrinsics K = smallCamera(48, 48, 60);  // the ball fills the middle of the image
+    CameraIntrinsics K = CameraIntrinsics::centred(48, 48, 60);  // the ball fills the middle of the image
     RenderOptions opt = rgbOnly(256, 64);
     opt.passes |= static_cast<PassMask>(Pass::Instance);
     Frame f;
@@ -148,7 +138,7 @@ TEST(PathTracer, WhiteFurnaceSphere) {
 TEST(PathTracer, SingleBounceFurnace) {
   Scene s = furnace(0.8f, 0.5f);
   Renderer r(s);
-  CameraIntrinsics K = smallCamera(48, 32, 40);
+  CameraIntrinsics K = CameraIntrinsics::centred(48, 32, 40);
   RenderOptions opt = rgbOnly(64, 1);
   Frame f;
   r.render(K, Pose::lookAt(Vec3(-0.5, 0.2, 0.9), Vec3(1, 0, 1.2), Vec3::UnitZ()), opt, 0, f);
@@ -181,7 +171,7 @@ TEST(PathTracer, DirectLightMatchesClosedForm) {
   s.objects = {fl, li};
   Renderer r(s);
   // tiny field of view: every pixel sees the floor right under the light
-  CameraIntrinsics K = smallCamera(8, 8, 4000);
+  CameraIntrinsics K = CameraIntrinsics::centred(8, 8, 4000);
   RenderOptions opt = rgbOnly(4096, 1);
   Frame f;
   // camera beside the light, looking straight down at the origin
@@ -229,7 +219,7 @@ TEST(PathTracer, SmoothGlassInAFurnaceIsInvisible) {
   Renderer r(s);
   RenderOptions opt = rgbOnly(64, 64);
   Frame f;
-  r.render(smallCamera(48, 32, 40),
+  r.render(CameraIntrinsics::centred(48, 32, 40),
            Pose::lookAt(Vec3(-0.5, 0.0, 1.0), Vec3(1.0, 0.5, 1.0), Vec3::UnitZ()), opt, 0, f);
   // every pixel, not just the mean: a lost or doubled lobe shows as a dark or bright disk or
   // ring. Per-pixel noise comes only from Russian roulette on paths with internal reflections.
@@ -243,7 +233,7 @@ TEST(PathTracer, ThinPaneAndConductorInAFurnace) {
   Renderer r(s);
   Frame f;
   Pose pose = Pose::lookAt(Vec3(-0.5, 0.0, 1.0), Vec3(1.0, 0.5, 1.0), Vec3::UnitZ());
-  r.render(smallCamera(48, 32, 40), pose, rgbOnly(64, 64), 0, f);
+  r.render(CameraIntrinsics::centred(48, 32, 40), pose, rgbOnly(64, 64), 0, f);
   EXPECT_NEAR(meanOf(f.rgb), 1.0, 0.01);
   // a gold ball reflects less than it receives, more in red than in blue, never more than Le
   s.materials.back().type = MaterialType::Conductor;
@@ -252,7 +242,7 @@ TEST(PathTracer, ThinPaneAndConductorInAFurnace) {
   s.materials.back().roughness = 0.3f;
   Renderer gold(s);
   Frame g;
-  CameraIntrinsics K = smallCamera(16, 16, 400);  // narrow: the ball fills the view
+  CameraIntrinsics K = CameraIntrinsics::centred(16, 16, 400);  // narrow: the ball fills the view
   gold.render(K, pose, rgbOnly(64, 16), 0, g);
   double red = 0, blue = 0;
   for (size_t i = 0; i < g.rgb.pixelCount(); ++i)
@@ -270,7 +260,7 @@ TEST(PathTracer, ThinPaneAndConductorInAFurnace) {
 TEST(PathTracer, ShadingIsRgbOverAlbedoAndStandsAlone) {
   Scene s = furnace(0.5f, 1.0f);
   Renderer r(s);
-  CameraIntrinsics K = smallCamera(24, 16, 20);
+  CameraIntrinsics K = CameraIntrinsics::centred(24, 16, 20);
   Pose pose = Pose::lookAt(Vec3(0.3, -0.2, 1.1), Vec3(1, 1, 0.8), Vec3::UnitZ());
   RenderOptions only = rgbOnly(4, 8);
   only.passes = static_cast<PassMask>(Pass::Shading);
@@ -289,7 +279,7 @@ TEST(PathTracer, ShadingIsRgbOverAlbedoAndStandsAlone) {
 TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   Scene s = furnace(0.7f, 0.3f);
   Renderer r(s);
-  CameraIntrinsics K = smallCamera(40, 30, 30);
+  CameraIntrinsics K = CameraIntrinsics::centred(40, 30, 30);
   RenderOptions opt = rgbOnly(4, 8);
   opt.passes = kRenderPasses;
   opt.seed = 1234;

@@ -26,12 +26,7 @@ void expectRendersWithLabels(const Scene& s, const Eigen::Vector2d& xy, const st
   Renderer r(s);
   auto [lo, hi] = s.bounds();
   const Vec3 eye(xy.x(), xy.y(), std::min(lo.z() + 1.5, 0.5 * (lo.z() + hi.z())));
-  CameraIntrinsics K;
-  K.width = 64;
-  K.height = 48;
-  K.fx = K.fy = 32;
-  K.cx = 32;
-  K.cy = 24;
+  const CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 32);
   RenderOptions opt;
   opt.passes = static_cast<PassMask>(Pass::Label) | static_cast<PassMask>(Pass::DepthRay);
   std::set<int> labels;

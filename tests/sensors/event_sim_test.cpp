@@ -506,7 +506,7 @@ TEST(EventSim, AdaptiveSamplingFollowsEsimAndClamps) {
   ImageF a(3, 2, 1, -1.0f), c = a;
   c.at(2, 1) = -0.5f;
   c.at(0, 0) = -1.2f;
-  EXPECT_NEAR(maxLogIntensityRate(a, 0, c, 10'000'000), 0.5 / 0.01, 1e-9);
+  EXPECT_NEAR(logIntensityRate(a, 0, c, 10'000'000), 0.5 / 0.01, 1e-9);
   f.min_rate_hz = 1e5;  // 1 / rate below min_dt
   EXPECT_EQ(expectInputError([&] { f.validate(); }).field(), "--min-rate-hz");
 }

@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "procedural/apartment.h"
+#include "flow_test_util.h"
 #include "render/renderer.h"
 #include "scene/primitives.h"
 #include "sensors/bspline.h"
@@ -27,21 +28,8 @@
 namespace inet {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-
-Quat axisAngle(const Vec3& axis, double rad) {
-  return Quat(Eigen::AngleAxisd(rad, axis.normalized()));
-}
-
-CameraIntrinsics intrinsics(int w, int h, double f) {
-  CameraIntrinsics K;
-  K.width = w;
-  K.height = h;
-  K.fx = K.fy = f;
-  K.cx = w / 2.0;
-  K.cy = h / 2.0;
-  return K;
-}
+using test::axisAngle;
+using test::kDeg;
 
 // ---- the acceptance test on rendered frames -------------------------------------------------
 
@@ -89,7 +77,7 @@ std::pair<double, double> coverageAndContrast(const Renderer& r, const CameraInt
 AcceptanceScene findScene(const std::filesystem::path& dir) {
   const std::vector<std::string> wanted = {"dining_chair", "office_chair", "armchair",   "stool",
                                            "coffee_table", "side_table",   "nightstand", "desk"};
-  const CameraIntrinsics K = intrinsics(80, 60, 65);
+  const CameraIntrinsics K = CameraIntrinsics::centred(80, 60, 65);
   for (uint64_t seed = 1; seed < 40; ++seed) {
     ApartmentOptions opt;
     opt.seed = seed;
@@ -239,7 +227,7 @@ test::TempDir* FlowAcceptance::dir_ = nullptr;
 AcceptanceScene* FlowAcceptance::scene_ = nullptr;
 
 TEST_F(FlowAcceptance, WarpingReproducesAlbedoInAStaticScene) {
-  const LensModel lens = LensModel::pinhole(intrinsics(160, 120, 130));
+  const LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(160, 120, 130));
   const FramePair p = renderPair(scene_->scene, scene_->T_world_c0, lens);
   const FlowField flow = forwardFlow(p.v0(), p.v1(), lens, {});
   const WarpStats all = warpError(p, flow, flow),
@@ -257,7 +245,7 @@ TEST_F(FlowAcceptance, WarpingReproducesAlbedoInAStaticScene) {
 TEST_F(FlowAcceptance, WarpingReproducesAlbedoWithAMovingPieceAndFailsWithoutItsMotion) {
   AcceptanceScene s = *scene_;
   addPieceMotion(s);
-  const LensModel lens = LensModel::pinhole(intrinsics(160, 120, 130));
+  const LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(160, 120, 130));
   const FramePair p = renderPair(s.scene, s.T_world_c0, lens);
   const ObjectMotion motion = objectMotionBetween(s.scene, kT0, kT1);
   ASSERT_EQ(motion.delta.size(), 1u);
@@ -291,7 +279,7 @@ TEST_F(FlowAcceptance, WarpingReproducesAlbedoWithAMovingPieceAndFailsWithoutIts
 TEST_F(FlowAcceptance, VgaFrameTimingAndExamplePicture) {
   AcceptanceScene s = *scene_;
   addPieceMotion(s);
-  const LensModel lens = LensModel::pinhole(intrinsics(640, 480, 520));
+  const LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(640, 480, 520));
   const FramePair p = renderPair(s.scene, s.T_world_c0, lens);
   const ObjectMotion motion = objectMotionBetween(s.scene, kT0, kT1);
   FlowField flow;

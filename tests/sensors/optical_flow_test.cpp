@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "procedural/apartment.h"
+#include "flow_test_util.h"
 #include "render/renderer.h"
 #include "scene/primitives.h"
 #include "sensors/bspline.h"
@@ -29,21 +30,8 @@
 namespace inet {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-
-Quat axisAngle(const Vec3& axis, double rad) {
-  return Quat(Eigen::AngleAxisd(rad, axis.normalized()));
-}
-
-CameraIntrinsics intrinsics(int w, int h, double f) {
-  CameraIntrinsics K;
-  K.width = w;
-  K.height = h;
-  K.fx = K.fy = f;
-  K.cx = w / 2.0;
-  K.cy = h / 2.0;
-  return K;
-}
+using test::axisAngle;
+using test::kDeg;
 
 // ---- an analytic scene: planes parallel to the image plane of camera k --------------------
 
@@ -89,7 +77,7 @@ Raster rasterise(const CameraIntrinsics& K, const Pose& T_world_camera,
 TEST(OpticalFlow, TranslationTowardAPlaneMatchesTheClosedForm) {
   // camera moves tz along its axis toward a plane at Z: a point at u goes to
   // cx + (u - cx) Z / (Z - tz), so flow_u = (u - cx) tz / (Z - tz) (the same in v)
-  const CameraIntrinsics K = intrinsics(640, 480, 600);
+  const CameraIntrinsics K = CameraIntrinsics::centred(640, 480, 600);
   const double Z = 3.0, tz = 0.1;
   const ImageF depth0(K.width, K.height, 1, static_cast<float>(Z));
   const ImageF depth1(K.width, K.height, 1, static_cast<float>(Z - tz));
@@ -147,7 +135,7 @@ TEST(OpticalFlow, TranslationTowardAPlaneMatchesTheClosedForm) {
 // ---- 2. instantaneous flow x dt against two-frame reprojection -----------------------------
 
 TEST(OpticalFlow, InstantaneousFlowMatchesTwoFrameReprojectionOfSplinePoses) {
-  const CameraIntrinsics K = intrinsics(320, 240, 300);
+  const CameraIntrinsics K = CameraIntrinsics::centred(320, 240, 300);
   // a hand-held-like spline: knots every 50 ms, ~0.5 m/s and ~40 deg/s
   std::vector<Pose> knots;
   for (int j = 0; j < 8; ++j) {
@@ -202,7 +190,7 @@ TEST(OpticalFlow, InstantaneousFlowMatchesTwoFrameReprojectionOfSplinePoses) {
 }
 
 TEST(OpticalFlow, PixelsWithoutDepthAreAThousandMetresAwayInTheInstantaneousFlow) {
-  const CameraIntrinsics K = intrinsics(64, 48, 60);
+  const CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 60);
   const ImageF none(K.width, K.height, 1, 0.f), far(K.width, K.height, 1, 1000.f);
   const CameraVelocity vel{Vec3(1, 0.5, 2), Vec3(0.3, -0.2, 0.1)};
   EXPECT_EQ(instantaneousFlow(none, K, vel), instantaneousFlow(far, K, vel));
@@ -232,7 +220,7 @@ bool rayCastVisible(const Vec3& X, const Pose& T_world_c1, const std::vector<Rec
 /// Runs forward flow on wall + box, compares `occluded` with ray-cast visibility of each pixel's
 /// point, ignoring pixels within 1.5 px of a depth edge of frame k+1 at the point's landing spot.
 void checkOcclusion(const Pose& T_world_c1, const Vec3& box_move, int expect_min_occluded) {
-  const CameraIntrinsics K = intrinsics(200, 150, 100);
+  const CameraIntrinsics K = CameraIntrinsics::centred(200, 150, 100);
   const std::vector<Rect> rects = {Rect{3.0, -1e9, 1e9, -1e9, 1e9, 1},
                                    Rect{1.0, -0.2, 0.2, -0.15, 0.15, 2}};
   const Raster r0 = rasterise(K, Pose(), rects, {Vec3::Zero(), Vec3::Zero()});
@@ -296,7 +284,7 @@ TEST(OpticalFlow, OcclusionFlagsTheWallAStaticBoxCoversByParallax) {
 
 TEST(OpticalFlow, InstanceMismatchAloneFlagsOcclusion) {
   // same depth, other instance at the landing spot (a poster swapped in): occluded
-  const CameraIntrinsics K = intrinsics(40, 30, 40);
+  const CameraIntrinsics K = CameraIntrinsics::centred(40, 30, 40);
   const ImageF depth(K.width, K.height, 1, 2.f);
   const ImageU16 a(K.width, K.height, 1, 5), b(K.width, K.height, 1, 6);
   const FlowField f =
@@ -374,7 +362,7 @@ TEST(OpticalFlow, PanoramaYawShiftsEveryPixelTheShortWayRound) {
 }
 
 TEST(OpticalFlow, DistortedPinholeRotationFlowIsIndependentOfDepth) {
-  LensModel lens = LensModel::pinhole(intrinsics(160, 120, 120));
+  LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(160, 120, 120));
   lens.k1 = -0.2;
   lens.k2 = 0.05;
   lens.p1 = 0.001;
@@ -506,7 +494,7 @@ TEST(OpticalFlow, ObjectMotionBetweenSceneTimes) {
 }
 
 TEST(OpticalFlow, MismatchedImageSizesAreInputErrors) {
-  const CameraIntrinsics K = intrinsics(40, 30, 40);
+  const CameraIntrinsics K = CameraIntrinsics::centred(40, 30, 40);
   const ImageF depth(40, 30, 1, 1.f), small(20, 30, 1, 1.f);
   const ImageU16 none, inst_small(20, 30, 1, 0);
   const LensModel lens = LensModel::pinhole(K);

@@ -197,8 +197,7 @@ std::vector<double> blocks(const Scene& base_scene, const LightSetup& setup) {
   Scene scene = base_scene;
   applyLightSetup(scene, setup, "test");
   Renderer r(scene);
-  CameraIntrinsics K;
-  K.width = 64, K.height = 48, K.fx = K.fy = 40, K.cx = 32, K.cy = 24;
+  const CameraIntrinsics K = CameraIntrinsics::centred(64, 48, 40);
   RenderOptions opt;
   opt.spp = 256;
   opt.seed = 11;
