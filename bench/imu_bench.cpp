@@ -3,6 +3,8 @@
 //   BM_ImuFromPoses     the whole simulateImu: spline fit to 60 s of 200 Hz poses (50 ms knots
 //                       by default, or every pose with 5 ms knots) + sampling + noise
 //   BM_ImuCsv           formatting the three CSV files' text (not the disk write)
+//   BM_SplineFit        PoseSpline::fit alone on 100 s of 200 Hz poses (issue 13: well under a
+//                       second), default 50 ms knots and 5 ms knots (every pose a knot)
 // Input: the analytic wandering and turning camera of tests/sensors/motion.h (copied here so
 // the benchmark does not depend on test headers).
 #include <benchmark/benchmark.h>
@@ -56,6 +58,21 @@ void BM_ImuFromPoses(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ImuFromPoses)->Arg(0)->Arg(5)->ArgName("knot_ms")->Unit(benchmark::kMillisecond);
+
+void BM_SplineFit(benchmark::State& state) {
+  const Trajectory traj = poses200Hz(100.0);
+  SplineFitOptions fit;
+  fit.knot_spacing_ns = state.range(0) * 1'000'000;
+  for (auto _ : state) {
+    const PoseSpline spline = PoseSpline::fit(traj, fit);
+    benchmark::DoNotOptimize(spline.numControls());
+  }
+  SplineFitReport rep;
+  PoseSpline::fit(traj, fit, &rep);
+  state.counters["poses"] = static_cast<double>(traj.size());
+  state.counters["gauss_newton"] = rep.rotation_iterations;
+}
+BENCHMARK(BM_SplineFit)->Arg(0)->Arg(5)->ArgName("knot_ms")->Unit(benchmark::kMillisecond);
 
 void BM_ImuCsv(benchmark::State& state) {
   const ImuSequence seq = simulateImu(poses200Hz(60.0), ImuOptions{});
