@@ -28,16 +28,23 @@ test: build
 bench: build
 	@$(BUILD)/apps/interiornet bench --json
 
-# libFuzzer on the parsers of our own formats (clang, ASan + UBSan), FUZZ_SECONDS each.
+# libFuzzer on the parsers of our own formats (clang, ASan + UBSan), FUZZ_SECONDS each. The
+# trajectory corpus also gets the official ground-truth files of ../shared (inputs are cut at
+# 32 KB, so the excerpt around fr2/desk's repeated stamp at line 10863 is added on its own).
 fuzz:
 	@bash scripts/setup.sh fuzz
 	@cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DINET_FUZZ=ON -DINET_BUILD_TESTS=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json fuzz_sensors
-	@for t in layout trajectory camera_json sensors; do \
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json fuzz_sensors fuzz_mitsuba
+	@for t in layout trajectory camera_json sensors mitsuba; do \
 	  mkdir -p build-fuzz/corpus/$$t && cp -n fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ ; \
+	  if [ $$t = trajectory ] && [ -d ../shared/data/trajectories ]; then \
+	    cp -n ../shared/data/trajectories/*.txt ../shared/data/trajectories/*.csv build-fuzz/corpus/$$t/ ; \
+	    sed -n '10850,10875p' ../shared/data/trajectories/tum_rgbd_fr2_desk_groundtruth.txt \
+	      > build-fuzz/corpus/$$t/fr2_desk_repeated_stamp.txt ; \
+	  fi; \
 	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
-	  build-fuzz/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=0 build-fuzz/corpus/$$t \
+	  build-fuzz/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=32768 -print_final_stats=0 build-fuzz/corpus/$$t \
 	    2>build-fuzz/fuzz_$$t.log || { tail -40 build-fuzz/fuzz_$$t.log; exit 1; }; \
 	  grep -E "^#[0-9]+.*DONE" build-fuzz/fuzz_$$t.log | tail -1; \
 	done

@@ -39,7 +39,7 @@ struct EvalArgs {
     cmd.add_option("GT", gt, "ground-truth trajectory file")->required();
     cmd.add_option("EST", est, "estimated trajectory file")->required();
     cmd.add_option("--gt-format", gt_format,
-                   "tum, euroc, icl, slambench or scenenet (default: detected)");
+                   "tum, euroc, icl, slambench, scenenet or scenenet_v1 (default: detected)");
     cmd.add_option("--est-format", est_format, "as --gt-format, for EST");
     cmd.add_option("--align", align,
                    std::string("none, se3 (rigid) or sim3 (rigid + scale, for monocular "
@@ -72,7 +72,7 @@ struct EvalArgs {
       for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       if (ext != ".png") throw InputError(plot, "--plot", "the figure is a PNG: name it *.png");
     }
-    return {readTrajectory(gt, fg), readTrajectory(est, fe)};
+    return {readTrajectoryFile(gt, fg), readTrajectoryFile(est, fe)};
   }
 
   /// An error of the evaluation itself (file "": association, alignment) names both files.

@@ -26,13 +26,14 @@ struct EventsCliArgs {
 };
 
 void runEvents(const EventsCliArgs& a) {
+  installStopHandlers();
   if (!(a.hfov_deg > 1 && a.hfov_deg < 179))
     throw InputError("", "--hfov", "must be in (1, 179) degrees");
   if (!(a.knot_spacing_s >= 0.0) || a.knot_spacing_s > 10.0)
     throw InputError("", "--knot-spacing", "must be in [0, 10] s (0 = automatic)");
   const EventCameraOptions opt = a.events.options(a.seed);
   // everything is read and checked before the first file is written
-  const Trajectory traj = readTrajectory(a.trajectory);
+  const Trajectory traj = readTrajectoryFile(a.trajectory);
   SplineFitOptions fit;
   fit.knot_spacing_ns = static_cast<TimeNs>(a.knot_spacing_s * 1e9 + 0.5);
   const PoseSpline spline = PoseSpline::fit(traj, fit, nullptr, a.trajectory);

@@ -16,7 +16,9 @@
 
 #include "common.h"
 #include "sensor_outputs.h"
+#include "core/color.h"
 #include "core/error.h"
+#include "render/tonemap.h"
 #include "core/progress.h"
 #include "dataset/boxes_json.h"
 #include "dataset/sequence_writer.h"
@@ -37,11 +39,6 @@ namespace inet::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-volatile std::sig_atomic_t g_stop = 0;
-extern "C" void onSignal(int) {
-  g_stop = 1;
-}
 
 struct GenerateArgs {
   SceneArgs scene;
@@ -69,6 +66,7 @@ struct GenerateArgs {
   double readout_ms = 0.0;
   LensArgs lens;
   bool hdr = false;
+  bool allow_dark = false;
   ResponseArgs response;
   CameraIntrinsics K;
   bool width_set = false, height_set = false, fx_set = false, fy_set = false;
@@ -123,7 +121,7 @@ CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
                                   opt.clearance, a.motion.style);
     return out;
   }
-  out.frames = readTrajectory(a.trajectory);
+  out.frames = readTrajectoryFile(a.trajectory);
   if (a.frames_set) {
     if (static_cast<size_t>(a.frames) > out.frames.size())
       throw InputError(a.trajectory, "--frames",
@@ -328,6 +326,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
                     const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats);
 
 void runGenerate(const GenerateArgs& a) {
+  installStopHandlers();  // before the scene loads: a scheduler may stop us at any time
   validateArgs(a);
   a.response.validate();
   const LensType lens_type = a.lens.type();
@@ -379,11 +378,55 @@ void runGenerate(const GenerateArgs& a) {
   opt.denoise = a.denoise;
   // every configuration's scene before the first file: the same trajectory goes through each
   for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
+  stopIfSignalled("before the first frame");
   for (const SceneConfig& c : configs)
     renderSequence(a, c, cam, lens, lens_type, want, passes, opt, imu, imu_seq, spline,
                    event_opt, depth_noise, formats);
+}
+
+/// A scene with no light where the camera looks renders black frames, and a silent black
+/// sequence costs a user hours: before anything is written, 5 poses spread over the path are
+/// rendered small (80 px wide, 4 spp, the same lens field of view for a pinhole) and their mean
+/// linear luminance, after the exposure, must reach kDarkFloor (sRGB 3/255) unless --allow-dark.
+constexpr double kDarkFloor = 1e-3;
+
+void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensModel& lens,
+                  const Trajectory& traj, const RenderOptions& opt, const std::string& where) {
+  CameraIntrinsics K = lens.K;
+  const double s = 80.0 / K.width;
+  K = CameraIntrinsics{80, std::max(1, static_cast<int>(std::lround(K.height * s))), K.fx * s,
+                       K.fy * s, K.cx * s, K.cy * s};
+  const LensModel preview = lens.type == LensType::Pinhole || lens.type == LensType::ThinLens
+                                ? LensModel::pinhole(K)
+                                : LensModel::pinhole(CameraIntrinsics::centred(80, 60, 40.0));
+  RenderOptions ro = opt;
+  ro.spp = 4;
+  ro.denoise = false;
+  ro.passes = static_cast<PassMask>(Pass::Rgb);
+  CameraResponse response;
+  response.exposure_ev = a.response.exposure_ev;
+  double sum = 0.0;
+  size_t pixels = 0;
+  Frame f;
+  for (int k = 0; k < 5; ++k) {
+    const size_t i = (traj.size() - 1) * static_cast<size_t>(k) / 4;
+    renderer.render(preview, CameraExposure::fixed(traj.poses[i].T_world_camera), ro,
+                    0x40000000u + static_cast<uint32_t>(k), f);
+    for (int y = 0; y < f.rgb.height; ++y)
+      for (int x = 0; x < f.rgb.width; ++x) {
+        const Eigen::Vector3f rgb(f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2));
+        sum += response.multiplier() * luminance(rgb);
+        ++pixels;
+      }
+  }
+  const double mean = sum / static_cast<double>(std::max<size_t>(pixels, 1));
+  if (mean < kDarkFloor)
+    throw InputError(where, "--allow-dark",
+                     fmt::format("the colour frames are essentially black (mean brightness {:.1e} "
+                                 "of white over 5 previewed poses): nothing lights what the "
+                                 "camera sees; add lights (--auto-lights on, --lights "
+                                 "light.xml), raise --exposure-ev, or pass --allow-dark",
+                                 mean));
 }
 
 /// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.
@@ -409,13 +452,15 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     spec.meta["depth_noise"] = {{"model", "Kinect-like, sensors/depth_noise.h"},
                                 {"parameters", depth_noise.toString()}};
   if (want.events) spec.meta["events"] = event_opt.sim.toString();
+  Renderer renderer(scene, opt.integrator);
+  if (has(passes, Pass::Rgb) && !a.allow_dark)
+    checkNotDark(a, renderer, lens, traj, opt, a.scene.path.empty() ? "built-in room" : a.scene.path);
   SequenceWriter writer(spec, traj, formats);
 
   if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
   const Pose T_cam0_cam1{Quat::Identity(), Vec3(a.stereo, 0, 0)};
   const std::vector<InstanceBox> boxes = want.boxes ? instanceBoxes(scene) : std::vector<InstanceBox>{};
   std::vector<std::vector<InstanceVisibility>> visible(want.boxes ? traj.size() : 0);
-  Renderer renderer(scene, opt.integrator);
   Shutter shutter;
   shutter.exposure_ns = static_cast<TimeNs>(std::llround(a.exposure_ms * 1e6));
   shutter.readout_ns = static_cast<TimeNs>(std::llround(a.readout_ms * 1e6));
@@ -432,12 +477,9 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   ImageF shown, shown1;  // the colour after the camera response; frame.rgb stays linear (EXR)
   size_t done = 0;
   for (size_t k = 0; k < traj.size(); ++k) {
-    if (g_stop) {
+    if (stopSignal()) {
       bar.finish();
-      std::fprintf(stderr,
-                   "interrupted after %zu of %zu frames; rerun the same command to resume\n", done,
-                   traj.size());
-      throw CLI::RuntimeError(130);
+      stopIfSignalled(fmt::format("after {} of {} frames of {}", done, traj.size(), dir.string()));
     }
     const TimeNs scene_t = traj.poses[k].t_ns - traj.poses.front().t_ns;
     if (!complete[k]) {
@@ -485,6 +527,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   bar.finish();
   writer.finish();
   if (want.boxes) writeTextAtomic(dir / "boxes.json", boxesJson(scene, boxes, traj, visible));
+  stopIfSignalled(fmt::format("after every frame of {} (the events are not written)", dir.string()));
   if (want.events) {
     const TimeNs t0 = std::max(traj.poses.front().t_ns, spline->startNs());
     const TimeNs t1 = std::min(traj.poses.back().t_ns, spline->endNs());
@@ -495,6 +538,8 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
                       event_opt, a.progress);
   }
   std::printf("wrote %zu frames to %s\n", traj.size(), dir.string().c_str());
+  // a signal during the last step: the sequence is whole, but the job was asked to stop
+  stopIfSignalled(fmt::format("after writing {} completely", dir.string()));
 }
 
 }  // namespace
@@ -578,6 +623,10 @@ void registerGenerate(CLI::App& app) {
   cmd->add_flag("--denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered); off by default");
+  cmd->add_flag("--allow-dark", a->allow_dark,
+                "write the sequence even when its colour frames are essentially black (mean "
+                "below 1/1000 of white, checked on a preview of 5 poses before anything is "
+                "written); without it that is an error");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");
   cmd->callback([a] { runGenerate(*a); });
 }

@@ -33,6 +33,7 @@ void runImu(const ImuArgs& a) {
     throw InputError("", "--knot-spacing", "must be in [0, 10] s (0 = automatic)");
   job.fit.knot_spacing_ns = static_cast<TimeNs>(a.knot_spacing_s * 1e9 + 0.5);
   const ImuJobResult r = runImuJob(job);
+  warnTrajectoryRead(a.trajectory, r.read);
   fmt::print("{}\n", r.fit.toString());
   fmt::print("wrote {} samples ({:.3f} s at {} Hz, {}) to {}/imu0/\n", r.samples,
              static_cast<double>(r.last_ns - r.first_ns) * 1e-9, a.rate_hz,

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "common.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "procedural/apartment.h"
@@ -44,8 +45,8 @@ void showScene(const Scene& s) {
     fmt::print("  {:>2} {:<16} {}\n", label, nyu40Name(label), count);
 }
 
-/// Writes `s` to `out` with texture paths relative to the output's folder (so the layout keeps
-/// working where it is written).
+/// Writes `s` to `out` with texture, mesh-file and environment-map paths relative to the
+/// output's folder (so the layout keeps working where it is written).
 void importScene(Scene s, const std::string& out) {
   namespace fs = std::filesystem;
   if (out.empty()) throw InputError("", "--out", "an output layout.json path is needed");
@@ -56,9 +57,38 @@ void importScene(Scene s, const std::string& out) {
   for (Material& m : s.materials)
     for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture})
       if (!t->empty()) t->file = fs::proximate(fs::absolute(t->path), dir).generic_string();
+  for (Mesh& m : s.meshes)  // importers leave the resolved path of a referenced mesh file
+    if (m.source.kind == MeshSource::Kind::File)
+      m.source.file = fs::proximate(fs::absolute(m.source.file), dir).generic_string();
+  for (Light& l : s.lights)
+    if (!l.envmap.empty())
+      l.envmap.file = fs::proximate(fs::absolute(l.envmap.path), dir).generic_string();
   saveLayout(s, out);
-  fmt::print("wrote {} ({} objects, {} materials, {} meshes inline)\n", out, s.objects.size(),
-             s.materials.size(), s.meshes.size());
+  const auto inline_meshes = std::count_if(s.meshes.begin(), s.meshes.end(), [](const Mesh& m) {
+    return m.source.kind == MeshSource::Kind::Inline;
+  });
+  fmt::print("wrote {} ({} objects, {} materials, {} meshes, {} of them inline)\n", out,
+             s.objects.size(), s.materials.size(), s.meshes.size(), inline_meshes);
+}
+
+/// A Mitsuba scene to `out`, and its sensor to camera.json in the same folder, so that
+/// `interiornet render --layout OUT --camera camera.json` renders the scene's own view.
+void importMitsuba(const SceneArgs& args, const std::string& out) {
+  namespace fs = std::filesystem;
+  if (!(args.scale > 0)) throw InputError(args.path, "--scale", "must be > 0");
+  const MitsubaOptions opt = args.mitsubaOptions();
+  MitsubaScene ms = readMitsubaScene(args.path, opt);
+  const std::string warn = ms.report.summary(opt.default_category);
+  if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", args.path.c_str(), warn.c_str());
+  importScene(std::move(ms.scene), out);
+  const fs::path camera = fs::path(out).parent_path() / "camera.json";
+  if (!ms.sensor) {
+    fmt::print("{} has no perspective sensor: no camera.json written\n", args.path);
+    return;
+  }
+  writeTextAtomic(camera, mitsubaCameraJson(*ms.sensor, fs::path(args.path).filename().string()));
+  fmt::print("wrote {} (the scene's sensor: {}x{}, fx {:.2f})\n", camera.string(),
+             ms.sensor->width, ms.sensor->height, ms.sensor->fx);
 }
 
 struct GenerateLayoutArgs {
@@ -99,8 +129,13 @@ void generateLayouts(const GenerateLayoutArgs& a) {
     fmt::print("wrote {}/layout.json and light.xml\n", a.out);
     return;
   }
+  installStopHandlers();
   ProgressBar bar(a.count, "layouts");
   for (int k = 0; k < a.count; ++k) {
+    if (stopSignal()) {
+      bar.finish();
+      stopIfSignalled(fmt::format("after {} of {} layouts", k, a.count));
+    }
     const uint64_t seed = a.seed + static_cast<uint64_t>(k);
     const fs::path dir = fs::path(a.out) / fmt::format("seed_{:06d}", seed);
     if (!fs::exists(dir / "layout.json"))  // a rerun resumes
@@ -181,22 +216,23 @@ void registerLayout(CLI::App& app) {
   auto* import = layout->add_subcommand(
       "import",
       "Write a scene as a layout.json: a mesh scene (OBJ, glTF, ... incl. SceneNet layouts: "
-      "--from obj) with its materials, textures and NYU40 labels, or a 3D-FRONT house JSON "
-      "(--from 3dfront, furniture from a 3D-FUTURE folder or as labelled boxes), ready for "
-      "lights and motion");
+      "--from obj) with its materials, textures and NYU40 labels, a 3D-FRONT house JSON "
+      "(--from 3dfront, furniture from a 3D-FUTURE folder or as labelled boxes), or a Mitsuba "
+      "scene (--from mitsuba: its sensor is written as camera.json beside the layout), ready "
+      "for lights and motion");
   auto import_args = std::make_shared<SceneArgs>();
   import->add_option("FILE", import_args->path,
-                     "the scene to import (the same as --scene): .json 3D-FRONT house, or any "
-                     "mesh file Assimp reads (.obj .gltf .glb .ply .fbx ...)");
+                     "the scene to import (the same as --scene): .json 3D-FRONT house, .xml "
+                     "Mitsuba scene, or any mesh file Assimp reads (.obj .gltf .glb .ply .fbx ...)");
   import_args->addTo(*import);
   auto out = std::make_shared<std::string>();
   auto from = std::make_shared<std::string>();
   auto models = std::make_shared<std::string>();
   import
       ->add_option("--from", *from,
-                   "obj (any Assimp format, SceneNet included) or 3dfront; default: 3dfront "
-                   "for .json, obj otherwise")
-      ->check(CLI::IsMember({"obj", "scenenet", "3dfront"}));
+                   "obj (any Assimp format, SceneNet included), 3dfront or mitsuba; default: "
+                   "3dfront for .json, mitsuba for .xml, obj otherwise")
+      ->check(CLI::IsMember({"obj", "scenenet", "3dfront", "mitsuba"}));
   import->add_option("--models", *models,
                      "3dfront: 3D-FUTURE model folder (<jid>/raw_model.obj); default: none, "
                      "furniture becomes labelled boxes");
@@ -204,7 +240,10 @@ void registerLayout(CLI::App& app) {
   import->callback([import_args, out, from, models] {
     if (import_args->isDefault()) throw InputError("", "FILE", "name the file to import");
     const std::string ext = std::filesystem::path(import_args->path).extension().string();
-    const std::string kind = !from->empty() ? *from : (ext == ".json" ? "3dfront" : "obj");
+    const std::string kind = !from->empty()   ? *from
+                             : ext == ".json" ? "3dfront"
+                             : import_args->isMitsuba() ? "mitsuba"
+                                                        : "obj";
     if (kind == "3dfront") {
       Front3dOptions opt;
       opt.models_dir = *models;
@@ -215,9 +254,12 @@ void registerLayout(CLI::App& app) {
       if (!warn.empty())
         std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(), warn.c_str());
       importScene(std::move(s), *out);
+    } else if (kind == "mitsuba") {
+      if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
+      importMitsuba(*import_args, *out);
     } else {
       if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
-      importScene(import_args->loadScene(), *out);
+      importScene(import_args->load(), *out);  // with --lights and the automatic lights
     }
   });
 }

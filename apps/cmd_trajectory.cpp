@@ -212,12 +212,12 @@ void registerTrajectory(CLI::App& app) {
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");
   auto s = std::make_shared<std::pair<std::string, std::string>>();
   auto scene = std::make_shared<SceneArgs>();
-  show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet)")
+  show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet, scenenet_v1)")
       ->required();
   scene->addTo(*show);
   show->add_option("--out", s->second, "PNG to write")->required();
   show->callback([s, scene] {
-    Trajectory traj = readTrajectory(s->first);
+    Trajectory traj = readTrajectoryFile(s->first);
     if (scene->isDefault()) {
       plotTrajectory(s->second, traj, nullptr, nullptr, fs::path(s->first).filename().string());
     } else {

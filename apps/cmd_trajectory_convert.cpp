@@ -1,5 +1,5 @@
 // interiornet trajectory convert: a trajectory file from one dataset's format to another's
-// (tum, euroc, icl, slambench, scenenet; frames and conventions in trajectory/formats.h),
+// (tum, euroc, icl, slambench, scenenet, scenenet_v1; frames and conventions in trajectory/formats.h),
 // optionally as the right camera of a stereo rig.
 //
 // Declared for the `trajectory` subcommand (add to common.h and call it there):
@@ -50,14 +50,22 @@ void runConvert(const ConvertArgs& a) {
   const std::string text = readTextFile(a.in);
   const TrajectoryFormat in_fmt =
       a.from.empty() ? detectTrajectoryFormat(a.in, text) : parseTrajectoryFormat(a.from, "--from");
-  if (*a.fps_opt && in_fmt != TrajectoryFormat::Icl && to != TrajectoryFormat::Icl)
+  const auto timeless = [](TrajectoryFormat f) {
+    return f == TrajectoryFormat::Icl || f == TrajectoryFormat::SceneNetV1;
+  };
+  if (*a.fps_opt && !timeless(in_fmt) && !timeless(to))
     throw InputError("", "--fps",
-                     fmt::format("only used by icl (frame numbers), but this converts {} to {}",
+                     fmt::format("only used by icl and scenenet_v1 (frame numbers, pose lists), "
+                                 "but this converts {} to {}",
                                  trajectoryFormatName(in_fmt), trajectoryFormatName(to)));
-  Trajectory traj = parseTrajectory(text, a.in, in_fmt, a.format);
+  TrajectoryFormatOptions opt = a.format;
+  if (*a.fps_opt) opt.pose_list_fps = opt.icl_fps;
+  TrajectoryReadReport report;
+  Trajectory traj = parseTrajectory(text, a.in, in_fmt, opt, &report);
+  warnTrajectoryRead(a.in, report);
   if (*a.baseline_opt)
     traj = offsetTrajectory(traj, Pose{Quat::Identity(), Vec3(a.baseline_m, 0, 0)});
-  writeTrajectory(a.out, traj, to, a.format);
+  writeTrajectory(a.out, traj, to, opt);
   fmt::print("wrote {} ({}, {} poses over {} s) from {} ({}){}\n", a.out, trajectoryFormatName(to),
              traj.size(), nsToSecondsString(traj.poses.back().t_ns - traj.poses.front().t_ns, 3),
              a.in, trajectoryFormatName(in_fmt),
@@ -71,7 +79,8 @@ void addTrajectoryConvertCommand(CLI::App* trajectory_cmd) {
       "convert",
       "Convert a camera trajectory between formats: tum (groundtruth.txt), euroc "
       "(state_groundtruth_estimate0/data.csv), icl (ICL-NUIM .gt.freiburg), slambench "
-      "(SLAMBench 2 groundtruth.txt), scenenet (SceneNet RGB-D camera log). Axes are converted "
+      "(SLAMBench 2 groundtruth.txt), scenenet (SceneNet RGB-D camera log), scenenet_v1 "
+      "(SceneNet v1 3x4 pose blocks). Axes are converted "
       "to each format's convention");
   auto a = std::make_shared<ConvertArgs>();
   cmd->add_option("IN", a->in, "trajectory file to read")->required();
@@ -81,8 +90,8 @@ void addTrajectoryConvertCommand(CLI::App* trajectory_cmd) {
                   "output format; default: from OUT's extension (.txt tum, .csv euroc, "
                   ".freiburg icl, .log scenenet)");
   a->fps_opt = cmd->add_option("--fps", a->format.icl_fps,
-                               "icl only: frame rate linking frame numbers and time "
-                               "(default 30, ICL-NUIM's)");
+                               "icl and scenenet_v1 only: frame rate linking frame numbers "
+                               "and time (default 30, ICL-NUIM's; scenenet_v1: 25)");
   a->baseline_opt = cmd->add_option(
       "--baseline", a->baseline_m,
       "write the right camera of a stereo rig: the pose shifted this many metres along the "

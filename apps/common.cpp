@@ -3,7 +3,9 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <cctype>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <unistd.h>
 
@@ -18,26 +20,48 @@
 #include "scene/default_scene.h"
 #include "scene/layout_json.h"
 #include "scene/light_xml.h"
+#include "variation/auto_lights.h"
 
 namespace inet::app {
 
 void SceneArgs::addTo(CLI::App& cmd) {
   cmd.add_option("--layout,--scene", path,
-                 "layout.json, or a mesh scene (.obj .gltf .glb .ply ...) imported with Assimp; "
-                 "default: the built-in furnished room");
-  cmd.add_option("--up", up, "up axis of an imported mesh scene (y or z; default z)")
-      ->check(CLI::IsMember({"y", "z"}));
+                 "layout.json, a Mitsuba scene (.xml, docs/mitsuba.md), or a mesh scene (.obj "
+                 ".gltf .glb .ply ...) imported with Assimp; default: the built-in furnished room");
+  cmd.add_option("--up", up,
+                 "up axis of an imported scene: y, z or auto (default: auto for mesh files: "
+                 "glTF is Y-up, others by where their floors and ceilings face, said on "
+                 "stderr; y for a Mitsuba .xml)")
+      ->check(CLI::IsMember({"y", "z", "auto"}));
   cmd.add_option("--scale", scale, "metres per unit of an imported mesh scene (default 1)");
   cmd.add_option("--labels", labels,
                  "CSV 'name,nyu40' mapping object names of an imported scene to NYU40");
   cmd.add_option("--lights", lights,
                  "light.xml lighting setup replacing the scene's lights (switch lamps on or off, "
                  "recolour them, dim the sun); default: the scene's own");
+  cmd.add_option("--auto-lights", auto_lights,
+                 "auto (default): a scene without any light gets lights: its lamp objects glow, "
+                 "enclosed spaces get ceiling lights, glass or an open scene gets daylight "
+                 "(docs/import.md); on: always add them; off: never (a scene without lights "
+                 "renders black)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
 }
 
 Scene SceneArgs::load() const {
+  const AutoLightMode mode = parseAutoLightMode(auto_lights, "--auto-lights");
   Scene s = loadScene();
   if (!lights.empty()) applyLightSetup(s, loadLightXml(lights), lights);
+  AutoLightOptions opt;
+  opt.mode = mode;
+  const AutoLightReport r = addAutoLights(s, opt);
+  const std::string where = path.empty() ? std::string("built-in room") : path;
+  if (!r.summary().empty())
+    std::fprintf(stderr, "warning: %s: %s\n", where.c_str(), r.summary().c_str());
+  else if (!sceneHasLight(s))
+    std::fprintf(stderr,
+                 "warning: %s: the scene has no light (no lamp, no emissive material, no sun or "
+                 "sky) and renders black; --auto-lights auto adds lights\n",
+                 where.c_str());
   return s;
 }
 
@@ -46,15 +70,76 @@ Scene SceneArgs::loadScene() const {
   std::filesystem::path p(path);
   if (p.extension() == ".json") return loadLayout(path);
   if (!(scale > 0)) throw InputError(path, "--scale", "must be > 0");
+  if (isMitsuba()) {
+    MitsubaReport report;
+    Scene s = importMitsubaScene(path, mitsubaOptions(), &report);
+    const std::string warn = report.summary(mitsubaOptions().default_category);
+    if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
+    return s;
+  }
   ImportOptions opt;
   opt.scale = scale;
-  opt.up = up[0];
+  opt.up = up.empty() || up == "auto" ? 'a' : up[0];
   opt.label_map = labels;
   ImportReport report;
   Scene s = importMeshScene(path, opt, &report);
+  if (!report.up_reason.empty())
+    std::fprintf(stderr, "note: %s: read as %s; --up %c to override\n", path.c_str(),
+                 report.up_reason.c_str(), report.up == 'y' ? 'z' : 'y');
   std::string warn = report.summary(opt.default_category);
   if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
   return s;
+}
+
+bool SceneArgs::isMitsuba() const {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".xml";
+}
+
+MitsubaOptions SceneArgs::mitsubaOptions() const {
+  MitsubaOptions opt;
+  opt.up = up.empty() || up == "auto" ? 'y' : up[0];
+  opt.scale = scale;
+  opt.label_map = labels;
+  return opt;
+}
+
+namespace {
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void onStopSignal(int sig) {
+  g_stop_signal = sig;
+}
+}  // namespace
+
+void installStopHandlers() {
+  std::signal(SIGINT, onStopSignal);
+  std::signal(SIGTERM, onStopSignal);
+}
+
+int stopSignal() {
+  return g_stop_signal;
+}
+
+void stopIfSignalled(const std::string& done) {
+  const int sig = g_stop_signal;
+  if (sig == 0) return;
+  std::fprintf(stderr, "stopped by %s %s; rerun the same command to resume\n",
+               sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "a signal", done.c_str());
+  throw CLI::RuntimeError(128 + sig);
+}
+
+Trajectory readTrajectoryFile(const std::string& path, std::optional<TrajectoryFormat> fmt,
+                              const TrajectoryFormatOptions& opt) {
+  TrajectoryReadReport report;
+  Trajectory traj = readTrajectory(path, fmt, opt, &report);
+  warnTrajectoryRead(path, report);
+  return traj;
+}
+
+void warnTrajectoryRead(const std::string& path, const TrajectoryReadReport& report) {
+  const std::string w = report.summary();
+  if (!w.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
 }
 
 void ResponseArgs::addTo(CLI::App& cmd) {

@@ -7,25 +7,34 @@
 
 #include "core/image.h"
 #include "render/lens.h"
+#include "scene/mitsuba_importer.h"
 #include "scene/scene.h"
+#include "trajectory/formats.h"
 #include "trajectory/random_trajectory.h"
 
 namespace inet::app {
 
-/// How a scene argument is interpreted: a layout.json, or a mesh file (OBJ/glTF/PLY...) imported
-/// with Assimp; empty path = the built-in default scene.
+/// How a scene argument is interpreted: a layout.json, a Mitsuba scene (.xml), or a mesh file
+/// (OBJ/glTF/PLY...) imported with Assimp; empty path = the built-in default scene.
 struct SceneArgs {
   std::string path;
-  std::string up = "z";
+  std::string up;  ///< "y", "z" or "auto"; "" = the format's default (auto for mesh files, y for
+                   ///< Mitsuba)
   double scale = 1.0;
   std::string labels;
   std::string lights;  ///< light.xml to apply, "" = the scene's own lights
-  /// Adds --layout/--scene, --up, --scale, --labels, --lights to `cmd`.
+  std::string auto_lights = "auto";  ///< variation/auto_lights.h: auto, on, off
+  /// Adds --layout/--scene, --up, --scale, --labels, --lights, --auto-lights to `cmd`.
   void addTo(CLI::App& cmd);
-  /// Loads the scene; prints the importer's warning summary once. Throws InputError.
+  /// Loads the scene, applies --lights and then the automatic lights (--auto-lights); prints
+  /// the importer's warning summary and what the automatic lights did, once. Throws InputError.
   Scene load() const;
-  Scene loadScene() const;  ///< without --lights
+  Scene loadScene() const;  ///< without --lights and --auto-lights
   bool isDefault() const { return path.empty(); }
+  /// Is the path a Mitsuba scene file (.xml)?
+  bool isMitsuba() const;
+  /// What --up, --scale and --labels ask of a Mitsuba import.
+  MitsubaOptions mitsubaOptions() const;
 };
 
 /// The camera's response to light, applied to the path-traced RGB before 8-bit encoding:
@@ -83,6 +92,25 @@ struct MotionArgs {
 /// The built-in procedural apartment (seed 0) that commands use when no layout is given and a
 /// furnished apartment is needed (its textures are made in a temporary folder and removed).
 Scene defaultApartment();
+
+/// readTrajectory, with what the reader did about the file's quirks (repeated stamps: see
+/// TrajectoryReadReport) printed as one warning line.
+Trajectory readTrajectoryFile(const std::string& path, std::optional<TrajectoryFormat> fmt = {},
+                              const TrajectoryFormatOptions& opt = {});
+/// Prints `report`'s summary as "warning: PATH: ..." when there is one.
+void warnTrajectoryRead(const std::string& path, const TrajectoryReadReport& report);
+
+/// Stopping long commands cleanly. A scheduler (Slurm, Kubernetes) sends SIGTERM some seconds
+/// before it kills a job, a user Ctrl-C (SIGINT). After installStopHandlers() such a signal only
+/// raises a flag; the command stops at its next safe point (between frames, between layouts),
+/// where every file written so far is whole, and exits with 128 + the signal (130 for SIGINT,
+/// 143 for SIGTERM), saying that a rerun of the same command resumes.
+void installStopHandlers();
+/// The signal that asked to stop (SIGINT, SIGTERM), or 0.
+int stopSignal();
+/// If a signal came: prints "stopped by SIGTERM <done>; rerun the same command to resume" and
+/// throws CLI::RuntimeError(128 + signal), which main() turns into that exit status.
+void stopIfSignalled(const std::string& done);
 
 /// Limits TBB to n threads for the life of the object (n = 0: all cores).
 class ThreadLimit {

@@ -1,5 +1,7 @@
 #include "sensor_outputs.h"
 
+#include "common.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -213,7 +215,11 @@ bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scen
         txt.write(events);
         h5.write(events);
       },
-      [&](double f) { bar.update(static_cast<int64_t>(f * 1000)); });
+      [&](double f) {
+        bar.update(static_cast<int64_t>(f * 1000));
+        // events0/ is complete only with its sensor.yaml: a rerun simulates it again
+        stopIfSignalled("during the event camera of " + dir.string());
+      });
   bar.finish();
   txt.close();
   h5.close();

@@ -48,6 +48,11 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
       a.sky = static_cast<int>(skies_.size());
       skies_.emplace_back(l);
       p = M_PI * scene_radius * scene_radius * skies_.back().luminanceIntegral();
+    } else if (l.type == LightType::Sky && l.sky_model == SkyModel::EnvMap) {
+      // as for the Preetham sky, over the whole sphere
+      a.envmap = static_cast<int>(envmaps_.size());
+      envmaps_.emplace_back(l, l.envmap.path);
+      p = M_PI * scene_radius * scene_radius * envmaps_.back().luminanceIntegral();
     } else if (l.type == LightType::Sky) {
       // radiance L from the whole sphere: power ~ pi L x the area of the scene's bounding sphere
       p *= 4.0 * M_PI * M_PI * scene_radius * scene_radius;
@@ -111,8 +116,10 @@ bool SceneLights::sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u,
 
 bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                                  LightSample& out) const {
-  if (a.sky >= 0) {
-    if (!skies_[a.sky].sample(u, out.wi, out.radiance, out.pdf)) return false;
+  if (a.envmap >= 0 || a.sky >= 0) {
+    const bool ok = a.envmap >= 0 ? envmaps_[a.envmap].sample(u, out.wi, out.radiance, out.pdf)
+                                  : skies_[a.sky].sample(u, out.wi, out.radiance, out.pdf);
+    if (!ok) return false;
     out.dist = std::numeric_limits<float>::infinity();
     out.delta = false;
     return true;
@@ -170,6 +177,12 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
   pdf = 0.f;
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
+    if (a.envmap >= 0) {
+      const EnvMapSkyLight& map = envmaps_[a.envmap];
+      L += map.radiance(d);
+      pdf += pmf_[triangles_.size() + k] * map.pdf(d);
+      continue;
+    }
     if (a.sky >= 0) {
       const PreethamSkyLight& sky = skies_[a.sky];
       L += sky.radiance(d);

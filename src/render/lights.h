@@ -3,7 +3,8 @@
 // triangles, point, spot, sun and sky lights), picked with probability proportional to an
 // estimate of its power, so that 50+ lights cost one sample each, not one shadow ray per light.
 // A uniform sky is sampled uniformly on the sphere; a Preetham sky from a table of its luminance
-// over the upper hemisphere (sky.h), with the same pdf for escaped rays (environmentRadiance).
+// over the upper hemisphere, an environment map from a table of its texels' luminance over the
+// sphere (sky.h), each with the same pdf for escaped rays (environmentRadiance).
 //
 // Conventions: `sample` returns the radiance arriving at p from the chosen point and the pdf of
 // choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
@@ -62,6 +63,7 @@ class SceneLights {
     float one_minus_cos_max = 0.f;
     float max_distance = 0.f;
     int sky = -1;  // Preetham sky: index into skies_ (-1: a uniform sky of radiance rgb)
+    int envmap = -1;  // environment-map sky: index into envmaps_
   };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                       LightSample& out) const;
@@ -70,6 +72,7 @@ class SceneLights {
   std::vector<EmissiveTriangle> triangles_;
   std::vector<Analytic> analytic_;  // index in the CDF: triangleCount() + i
   std::vector<PreethamSkyLight> skies_;
+  std::vector<EnvMapSkyLight> envmaps_;
   std::vector<size_t> environment_;  // indices into analytic_ of suns and skies (escaped rays)
   std::vector<float> cdf_, pmf_;
 };

@@ -6,6 +6,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "render/texture.h"
 
 namespace inet {
 namespace {
@@ -89,12 +90,17 @@ Eigen::Vector3d PreethamSky::rgb(const Vec3& d) const {
 }
 
 HemisphereDistribution::HemisphereDistribution(const std::vector<double>& values, int n_theta,
-                                               int n_phi)
+                                               int n_phi, double theta_max)
     : n_theta_(n_theta), n_phi_(n_phi) {
   INET_CHECK(n_theta > 0 && n_phi > 0 && values.size() == size_t(n_theta) * n_phi);
-  const double dtheta = 0.5 * kPi / n_theta, dphi = 2.0 * kPi / n_phi;
+  INET_CHECK(theta_max > 0.0 && theta_max <= kPi);
+  const double dtheta = theta_max / n_theta, dphi = 2.0 * kPi / n_phi;
+  // the last edge exactly 0 (horizon) or -1 (south pole): no sliver of the cap left out
+  double last = std::cos(theta_max);
+  if (std::abs(last) < 1e-12) last = 0.0;
+  if (last < -1.0 + 1e-12) last = -1.0;
   std::vector<double> cos_edge(n_theta + 1);
-  for (int i = 0; i <= n_theta; ++i) cos_edge[i] = i == n_theta ? 0.0 : std::cos(i * dtheta);
+  for (int i = 0; i <= n_theta; ++i) cos_edge[i] = i == n_theta ? last : std::cos(i * dtheta);
   std::vector<double> row_mass(n_theta, 0.0);
   double total = 0.0;
   for (int i = 0; i < n_theta; ++i) {
@@ -158,7 +164,10 @@ bool HemisphereDistribution::sample(const Eigen::Vector2f& u, Vec3f& wi, float& 
 }
 
 int HemisphereDistribution::cell(const Vec3f& d) const {
-  if (!(d.z() > 0.f) || pdf_.empty()) return -1;
+  if (pdf_.empty()) return -1;
+  // a whole-sphere table also takes the south pole itself (and z a rounding below -1)
+  const float lo = cos_edge_.back();
+  if (!(lo <= -1.f ? d.z() == d.z() : d.z() > lo)) return -1;
   // row i holds cos_edge[i + 1] <= z < cos_edge[i] (the edges fall from 1 to 0)
   const auto first_below =
       std::lower_bound(cos_edge_.begin() + 1, cos_edge_.end(), d.z(), std::greater<float>());
@@ -214,6 +223,114 @@ bool PreethamSkyLight::sample(const Eigen::Vector2f& u, Vec3f& wi, Vec3f& radian
   if (!table_.sample(u, wi, pdf)) return false;
   radiance = this->radiance(wi);
   return true;
+}
+
+namespace {
+
+/// The table frame swaps x and y of the map frame, so that the table's phi = atan2(y, x) is the
+/// map's phi = 2 pi u, and table column j is image column j.
+Vec3f swapXY(const Vec3f& v) {
+  return {v.y(), v.x(), v.z()};
+}
+
+/// Linear RGB, 3 channels, every value finite and >= 0 (an HDR file may hold NaN or negatives).
+ImageF sanitizedRgb(const ImageF& in) {
+  INET_CHECK(in.width > 0 && in.height > 0 && (in.channels == 1 || in.channels == 3));
+  ImageF out(in.width, in.height, 3);
+  for (int y = 0; y < in.height; ++y)
+    for (int x = 0; x < in.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float v = in.at(x, y, in.channels == 1 ? 0 : c);
+        out.at(x, y, c) = std::isfinite(v) && v > 0.f ? v : 0.f;
+      }
+  return out;
+}
+
+}  // namespace
+
+EnvMapSkyLight::EnvMapSkyLight(const Light& light, const std::string& where)
+    : EnvMapSkyLight(Texture::load(light.envmap.path, TextureEncoding::Srgb, where,
+                                   "lights['" + light.name + "'].file")
+                         .level(0),
+                     light.envmap_rotation, light.intensity) {}
+
+EnvMapSkyLight::EnvMapSkyLight(ImageF image, const Mat3& rotation, float scale)
+    : image_(sanitizedRgb(image)), R_world_map_(rotation.cast<float>()), scale_(scale) {
+  build();
+}
+
+Eigen::Vector2f EnvMapSkyLight::directionToUv(const Vec3f& d) {
+  float u = std::atan2(d.x(), d.y()) / (2.f * static_cast<float>(kPi));
+  if (u < 0.f) u += 1.f;
+  const float v = std::acos(std::clamp(d.z(), -1.f, 1.f)) / static_cast<float>(kPi);
+  return {u, v};
+}
+
+Vec3f EnvMapSkyLight::uvToDirection(const Eigen::Vector2f& uv) {
+  const float phi = 2.f * static_cast<float>(kPi) * uv.x(), theta = static_cast<float>(kPi) * uv.y();
+  const float s = std::sin(theta);
+  return {std::sin(phi) * s, std::cos(phi) * s, std::cos(theta)};
+}
+
+Vec3f EnvMapSkyLight::texel(int x, int y) const {
+  const float* p = image_.pixel(x, y);
+  return {p[0], p[1], p[2]};
+}
+
+void EnvMapSkyLight::build() {
+  const int W = image_.width, H = image_.height;
+  std::vector<double> lum(size_t(W) * H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) lum[size_t(y) * W + x] = luminance(texel(x, y));
+  std::vector<double> bound(lum.size(), 0.0);
+  double integral = 0.0, peak = 0.0;
+  const double dphi = 2.0 * kPi / W;
+  for (int y = 0; y < H; ++y) {
+    const double omega = (std::cos(y * kPi / H) - std::cos((y + 1) * kPi / H)) * dphi;
+    for (int x = 0; x < W; ++x) {
+      double m = 0.0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int yy = std::clamp(y + dy, 0, H - 1), xx = ((x + dx) % W + W) % W;
+          m = std::max(m, lum[size_t(yy) * W + xx]);
+        }
+      bound[size_t(y) * W + x] = m;
+      peak = std::max(peak, m);
+      integral += lum[size_t(y) * W + x] * omega;
+    }
+  }
+  luminance_integral_ = integral * scale_;
+  if (peak > 0.0) table_ = HemisphereDistribution(bound, H, W, kPi);
+}
+
+Vec3f EnvMapSkyLight::radiance(const Vec3f& d) const {
+  const Eigen::Vector2f uv = directionToUv(R_world_map_.transpose() * d);
+  if (!uv.allFinite()) return Vec3f::Zero();
+  const int W = image_.width, H = image_.height;
+  // texel centres at ((x + 0.5) / W, (y + 0.5) / H): repeat in u, clamp in v
+  const float fx = uv.x() * W - 0.5f, fy = uv.y() * H - 0.5f;
+  const float x0f = std::floor(fx), y0f = std::floor(fy);
+  const float tx = fx - x0f, ty = fy - y0f;
+  const int x0 = ((static_cast<int>(x0f) % W) + W) % W, x1 = (x0 + 1) % W;
+  const int y0 = std::clamp(static_cast<int>(y0f), 0, H - 1);
+  const int y1 = std::clamp(static_cast<int>(y0f) + 1, 0, H - 1);
+  const Vec3f top = (1.f - tx) * texel(x0, y0) + tx * texel(x1, y0);
+  const Vec3f bottom = (1.f - tx) * texel(x0, y1) + tx * texel(x1, y1);
+  return scale_ * ((1.f - ty) * top + ty * bottom);
+}
+
+float EnvMapSkyLight::pdf(const Vec3f& d) const {
+  return table_.pdf(swapXY(R_world_map_.transpose() * d));
+}
+
+bool EnvMapSkyLight::sample(const Eigen::Vector2f& u, Vec3f& wi, Vec3f& radiance,
+                            float& pdf) const {
+  Vec3f t;
+  if (!table_.sample(u, t, pdf)) return false;
+  wi = (R_world_map_ * swapXY(t)).normalized();
+  pdf = this->pdf(wi);  // of the world direction itself, so that it equals pdf(wi) exactly
+  radiance = this->radiance(wi);
+  return pdf > 0.f;
 }
 
 }  // namespace inet

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "core/image.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -54,8 +55,9 @@ class PreethamSky {
   double scale_[3];  // value at the zenith / F(0, theta_s), for Y, x, y
 };
 
-/// A piecewise-constant distribution of directions over the upper hemisphere, on an
-/// n_theta x n_phi grid uniform in zenith angle theta in [0, pi/2] and azimuth phi in [0, 2 pi)
+/// A piecewise-constant distribution of directions over a polar cap, the upper hemisphere by
+/// default (theta_max = pi / 2) or the whole sphere (theta_max = pi), on an n_theta x n_phi grid
+/// uniform in zenith angle theta in [0, theta_max] and azimuth phi in [0, 2 pi)
 /// (phi = atan2(y, x)). The pdf with respect to solid angle is constant on each cell:
 ///   pdf = f_ij / sum_kl f_kl Omega_kl,   Omega_ij = (cos theta_i - cos theta_i+1) dphi
 /// (Omega is the cell's solid angle, the exact integral of the sin theta Jacobian). Sampling
@@ -64,18 +66,20 @@ class PreethamSky {
 class HemisphereDistribution {
  public:
   HemisphereDistribution() = default;  ///< empty: pdf 0 everywhere, sample fails
-  /// values: n_theta * n_phi non-negative weights, row-major (row 0 at the zenith), not all 0.
-  HemisphereDistribution(const std::vector<double>& values, int n_theta, int n_phi);
+  /// values: n_theta * n_phi non-negative weights, row-major (row 0 at the zenith), not all 0;
+  /// theta_max in (0, pi].
+  HemisphereDistribution(const std::vector<double>& values, int n_theta, int n_phi,
+                         double theta_max = 1.5707963267948966);
 
   /// A direction for u in [0, 1)^2, and its pdf (solid angle, = pdf(wi)); false if pdf is 0.
   bool sample(const Eigen::Vector2f& u, Vec3f& wi, float& pdf) const;
-  /// Solid-angle pdf of unit direction d (0 for d.z() <= 0).
+  /// Solid-angle pdf of unit direction d (0 outside the cap, e.g. d.z() <= 0 for a hemisphere).
   float pdf(const Vec3f& d) const;
   int thetaCells() const { return n_theta_; }
   int phiCells() const { return n_phi_; }
 
  private:
-  int cell(const Vec3f& d) const;  // -1 below the horizon
+  int cell(const Vec3f& d) const;  // -1 outside the cap
   int n_theta_ = 0, n_phi_ = 0;
   std::vector<float> cos_edge_;    // n_theta + 1 row edges, cos of theta
   std::vector<float> pdf_;         // per cell
@@ -109,6 +113,47 @@ class PreethamSkyLight {
   double scale_ = 0.0;  // W sr^-1 m^-2 per model unit
   double luminance_integral_ = 0.0;
   HemisphereDistribution table_;
+};
+
+/// An environment-map sky (SkyModel::EnvMap) as a light: an equirectangular image of radiance
+/// (Light::envmap, its convention documented there), turned into the world by
+/// Light::envmap_rotation and scaled by Light::intensity. Radiance is interpolated bilinearly
+/// between texel centres (repeating in u, clamped at the poles), as Mitsuba's envmap emitter
+/// does. Importance sampling uses one HemisphereDistribution cell per texel over the whole
+/// sphere (rows uniform in theta, as the image's), weighted by the largest luminance among the
+/// texel and its 8 neighbours: bilinear interpolation never leaves that bound inside the cell,
+/// so radiance / pdf stays bounded (no fireflies from a dim cell next to the sun) and every
+/// direction with radiance can be sampled.
+class EnvMapSkyLight {
+ public:
+  /// Loads the image (Texture::load: PNG, JPEG, EXR; errors name `where` and the light's
+  /// file). Negative and non-finite texels read as 0.
+  EnvMapSkyLight(const Light& light, const std::string& where);
+  /// From an image in memory (linear RGB, 1 or 3 channels), for tests.
+  EnvMapSkyLight(ImageF image, const Mat3& rotation, float scale);
+
+  /// Radiance (linear RGB, W sr^-1 m^-2) seen looking along unit world direction d.
+  Vec3f radiance(const Vec3f& d) const;
+  /// Solid-angle pdf with which `sample` picks unit world direction d.
+  float pdf(const Vec3f& d) const;
+  /// A direction for u in [0, 1)^2: its radiance and pdf (= pdf(wi)); false if nothing to sample.
+  bool sample(const Eigen::Vector2f& u, Vec3f& wi, Vec3f& radiance, float& pdf) const;
+  /// Integral of the luminance of `radiance` over the sphere (W m^-2; for light picking).
+  double luminanceIntegral() const { return luminance_integral_; }
+
+  /// (u, v) in [0, 1]^2 of a unit direction in the map's own frame (Light::envmap).
+  static Eigen::Vector2f directionToUv(const Vec3f& d_map);
+  /// Unit direction in the map's own frame of (u, v).
+  static Vec3f uvToDirection(const Eigen::Vector2f& uv);
+
+ private:
+  void build();
+  Vec3f texel(int x, int y) const;
+  ImageF image_;  // linear RGB, 3 channels
+  Eigen::Matrix3f R_world_map_;
+  float scale_ = 1.f;
+  double luminance_integral_ = 0.0;
+  HemisphereDistribution table_;  // in the "table frame": the map frame with x and y swapped
 };
 
 }  // namespace inet

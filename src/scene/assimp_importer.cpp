@@ -266,8 +266,16 @@ Material convertMaterial(const aiMaterial* in, const fs::path& model_dir, bool i
   mat.id = uniqueId(name.C_Str(), used_ids);
   Vec3f albedo = readColor(in, AI_MATKEY_COLOR_DIFFUSE, mat.albedo);
   Vec3f emission = readColor(in, AI_MATKEY_COLOR_EMISSIVE, mat.emission);
+  const Vec3f ambient = readColor(in, AI_MATKEY_COLOR_AMBIENT, Vec3f::Zero());
   if (!albedo.allFinite()) albedo = Material().albedo;
   if (!emission.allFinite()) emission.setZero();
+  // Older OBJ files (Cornell boxes among them) give a light only as Ka, the ambient colour:
+  // with no Ke and a Ka above 1, which no reflectance can be, the file means emitted light.
+  // Ka <= 1 stays ambient (Blender writes Ka 1 1 1 for every material).
+  if (!(emission.maxCoeff() > 0.f) && ambient.allFinite() && ambient.maxCoeff() > 1.f) {
+    emission = ambient;
+    report.ka_emission_materials.push_back(name.C_Str());
+  }
   if (albedo.minCoeff() < 0.f || albedo.maxCoeff() > 1.f) ++report.clamped_materials;
   mat.albedo = albedo.cwiseMax(0.f).cwiseMin(1.f);
   mat.emission = emission.cwiseMax(0.f);
@@ -424,6 +432,16 @@ std::string ImportReport::summary(const std::string& default_category) const {
     parts.push_back(fmt::format(
         "{} material(s) have a bump (height) map, which is not supported and was ignored",
         ignored_bump_maps));
+  if (!ka_emission_materials.empty()) {
+    std::string names;
+    for (size_t i = 0; i < ka_emission_materials.size() && i < 10; ++i)
+      names += (i ? ", " : "") + ka_emission_materials[i];
+    parts.push_back(fmt::format(
+        "{} material(s) have no emission (Ke) but an ambient colour (Ka) above 1, which no "
+        "reflectance can be: Ka is taken as their emitted radiance ({}); give them Ke to say "
+        "otherwise",
+        ka_emission_materials.size(), names));
+  }
   if (clamped_materials > 0)
     parts.push_back(fmt::format(
         "{} material(s) had a diffuse colour outside [0, 1] and were clamped", clamped_materials));
@@ -432,7 +450,53 @@ std::string ImportReport::summary(const std::string& default_category) const {
   return out;
 }
 
+char detectUpAxis(const Scene& scene, const std::string& path, std::string* why) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".gltf" || ext == ".glb") {
+    if (why) *why = "glTF files are Y-up by their specification";
+    return 'y';
+  }
+  const int floor = *nyu40FromName("floor"), ceiling = *nyu40FromName("ceiling");
+  Vec3 labelled = Vec3::Zero(), all = Vec3::Zero();  // area facing along x, y, z
+  for (const Object& o : scene.objects) {
+    const Mesh& m = scene.meshes[o.mesh];
+    const Mat3 R = o.T_world_object.block<3, 3>(0, 0);
+    for (const Tri& t : m.triangles) {
+      const Vec3 a = R * m.positions[t[0]].cast<double>(), b = R * m.positions[t[1]].cast<double>(),
+                 c = R * m.positions[t[2]].cast<double>();
+      const Vec3 n = (b - a).cross(c - a);  // |n| = twice the area
+      const double len = n.norm();
+      if (!(len > 0)) continue;
+      for (int k = 0; k < 3; ++k) {
+        if (std::abs(n[k]) < 0.9 * len) continue;
+        all[k] += 0.5 * len;
+        if (o.nyu40 == floor || o.nyu40 == ceiling) labelled[k] += 0.5 * len;
+      }
+    }
+  }
+  const bool by_labels = labelled.y() + labelled.z() > 0;
+  const Vec3& area = by_labels ? labelled : all;
+  const char up = area.y() > area.z() ? 'y' : 'z';
+  if (why)
+    *why = fmt::format("{} {:.1f} m^2 of {} face along y and {:.1f} m^2 along z", up == 'y' ? "Y-up:" : "Z-up:",
+                       area.y(), by_labels ? "its floor and ceiling objects" : "its triangles",
+                       area.z());
+  return up;
+}
+
 Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportReport* report_out) {
+  if (opt.up == 'a') {
+    ImportOptions raw = opt;
+    raw.up = 'z';
+    ImportReport report;
+    Scene s = importMeshScene(path, raw, &report);
+    std::string why;
+    raw.up = detectUpAxis(s, path, &why);
+    if (raw.up == 'y') s = importMeshScene(path, raw, &report);
+    report.up_reason = why;
+    if (report_out) *report_out = std::move(report);
+    return s;
+  }
   checkAxes(opt.scale, opt.up, path, "import options");
   auto default_id = nyu40FromName(opt.default_category);
   if (!default_id)
@@ -450,6 +514,7 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
     throw InputError(path, "", "the file contains no triangles (only lines or points?)");
   builder.report.objects = scene.objects.size();
   scene.validate(path);
+  builder.report.up = opt.up;
   if (report_out) *report_out = std::move(builder.report);
   return std::move(scene);
 }

@@ -23,7 +23,8 @@ namespace inet {
 /// How to read a mesh file into a Scene.
 struct ImportOptions {
   double scale = 1.0;                          ///< metres per file unit, > 0
-  char up = 'z';                               ///< the file's up axis: 'z' or 'y'
+  /// The file's up axis: 'z', 'y', or 'a' (auto: detectUpAxis decides, and the report says how)
+  char up = 'z';
   std::string label_map;                       ///< label map CSV path ("" = NYU40 names only)
   std::string default_category = "otherprop";  ///< NYU40 class for names nothing matches
 };
@@ -38,11 +39,25 @@ struct ImportReport {
   size_t flattened_triangles = 0;            ///< triangles whose vertex normals crossed a hard edge
   size_t skipped_textures = 0;               ///< textures embedded, missing, or empty folders
   size_t ignored_bump_maps = 0;  ///< materials with a bump (height) map, which is not supported
+  /// Materials without Ke whose ambient colour Ka exceeds 1 (no reflectance can): taken as
+  /// emitted radiance, the way older OBJ files (Cornell boxes) give their light.
+  std::vector<std::string> ka_emission_materials;
+  char up = 'z';           ///< the up axis the scene was read with
+  std::string up_reason;   ///< with up = 'a': why that axis (detectUpAxis)
 
   /// One line, findings separated by "; " (e.g. "12 objects (3 distinct names) matched no label
   /// and were labelled 'otherprop': lamp_a, ..."), or "" when there is nothing to warn about.
   std::string summary(const std::string& default_category) const;
 };
+
+/// The up axis of a mesh file, 'y' or 'z', and in `why` the rule that decided:
+///  - glTF (.gltf, .glb): y, as its specification says;
+///  - objects labelled floor or ceiling: the axis their triangles face along;
+///  - otherwise the axis along which the most triangle area faces, of y and z: floors, ceilings
+///    and table tops outweigh the walls of any one direction in an interior (a long narrow
+///    corridor is the exception: give --up then).
+/// `scene` is the file imported as Z-up (its own axes).
+char detectUpAxis(const Scene& scene, const std::string& path, std::string* why);
 
 /// Imports the mesh file `path` as a Scene named after the file's stem. Throws InputError naming
 /// the file when it is missing, unreadable, malformed (Assimp's message), has no triangles, when

@@ -100,7 +100,11 @@ const std::vector<LabelMap::Entry>& builtinEntries() {
         {"painting", "picture"}, {"poster", "picture"},         {"frame", "picture"},
         {"carpet", "floor_mat"}, {"rug", "floor_mat"},          {"couch", "sofa"},
         {"wardrobe", "cabinet"}, {"cupboard", "cabinet"},       {"armchair", "chair"},
-        {"stool", "chair"},      {"nightstand", "night_stand"}, {"monitor", "television"}};
+        {"stool", "chair"},      {"nightstand", "night_stand"}, {"monitor", "television"},
+        // SceneNet RGB-D's and 3D-FRONT's words for lights, shelves and loose furniture
+        {"light", "lamp"},       {"lightbulb", "lamp"},         {"chandelier", "lamp"},
+        {"lighting", "lamp"},    {"shelf", "shelves"},          {"pane", "window"},
+        {"drawer", "dresser"},   {"furniture", "otherfurniture"}};
     for (const auto& [alias, name] : more) v.push_back({alias, *nyu40FromName(name), 0});
     return v;
   }();

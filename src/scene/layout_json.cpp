@@ -492,12 +492,23 @@ Room parseRoom(const Reader& r, const json& j, const std::string& field) {
 SkyModel parseSkyModel(const Reader& r, const json& j, const std::string& field) {
   if (!j.contains("model")) return SkyModel::Uniform;
   const std::string model = r.string(j["model"], dot(field, "model"));
-  for (SkyModel m : {SkyModel::Uniform, SkyModel::Preetham})
+  for (SkyModel m : {SkyModel::Uniform, SkyModel::Preetham, SkyModel::EnvMap})
     if (model == skyModelName(m)) return m;
-  r.fail(dot(field, "model"), "unknown sky model '" + model + "' (valid: uniform, preetham)");
+  r.fail(dot(field, "model"),
+         "unknown sky model '" + model + "' (valid: uniform, preetham, envmap)");
 }
 
-Light parseLight(const Reader& r, const json& j, const std::string& field) {
+/// An envmap sky's rotation: 3 rows of 3 numbers (map frame -> world), kept as written; Scene::
+/// validate checks that it is a rotation.
+Mat3 parseRotation(const Reader& r, const json& j, const std::string& field) {
+  const json& rows = r.fixedArray(j, field, 3);
+  Mat3 m;
+  for (int i = 0; i < 3; ++i) m.row(i) = r.vec3(rows[i], at(field, i)).transpose();
+  return m;
+}
+
+Light parseLight(const Reader& r, const json& j, const std::string& field,
+                 const fs::path& base_dir) {
   if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
   if (!j.contains("type"))
     r.fail(dot(field, "type"), "missing required key (point, spot, sun or sky)");
@@ -523,6 +534,9 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
     l.sky_model = parseSkyModel(r, j, field);
     if (l.sky_model == SkyModel::Uniform)
       r.object(j, field, {"name", "type", "intensity"}, keys({"model"}));
+    else if (l.sky_model == SkyModel::EnvMap)  // the image gives the colour
+      r.object(j, field, {"name", "type", "model", "file", "intensity"},
+               {"rotation", "on", "object"});
     else  // the model gives the colour: no color or temperature_k
       r.object(j, field, {"name", "type", "model", "sun_direction", "intensity"},
                {"turbidity", "on", "object"});
@@ -541,6 +555,9 @@ Light parseLight(const Reader& r, const json& j, const std::string& field) {
   if (j.contains("sun_direction"))
     l.direction = r.vec3(j["sun_direction"], dot(field, "sun_direction"));
   if (j.contains("turbidity")) l.turbidity = r.single(j["turbidity"], dot(field, "turbidity"));
+  if (j.contains("file")) l.envmap = parseTexture(r, j["file"], dot(field, "file"), base_dir);
+  if (j.contains("rotation"))
+    l.envmap_rotation = parseRotation(r, j["rotation"], dot(field, "rotation"));
   l.intensity = r.single(j["intensity"], dot(field, "intensity"));
   if (l.intensity < 0.f) r.fail(dot(field, "intensity"), "must be >= 0 (W/sr, or W/m^2 for a sun)");
   if (j.contains("color")) l.color = r.vec3f(j["color"], dot(field, "color"));
@@ -637,7 +654,7 @@ Scene parseLayout(const std::string& text, const std::string& path) {
   if (root.contains("lights")) {
     const json& lights = r.array(root["lights"], "lights");
     for (size_t i = 0; i < lights.size(); ++i)
-      scene.lights.push_back(parseLight(r, lights[i], at("lights", i)));
+      scene.lights.push_back(parseLight(r, lights[i], at("lights", i), base_dir));
   }
   scene.validate(path);
   return scene;

@@ -51,16 +51,24 @@ ojson lightToJson(const Light& l) {
   const bool directional = l.type == LightType::Sun || l.type == LightType::Sky;
   // a uniform sky writes no model (files from before the Preetham sky keep their bytes)
   const bool preetham = l.type == LightType::Sky && l.sky_model == SkyModel::Preetham;
+  const bool envmap = l.type == LightType::Sky && l.sky_model == SkyModel::EnvMap;
   if (preetham) {
     j["model"] = skyModelName(l.sky_model);
     j["sun_direction"] = jsonArray(l.direction);
     j["turbidity"] = jsonNumber(l.turbidity);
   }
+  if (envmap) {
+    j["model"] = skyModelName(l.sky_model);
+    j["file"] = l.envmap.file;
+    ojson rows = ojson::array();
+    for (int i = 0; i < 3; ++i) rows.push_back(jsonArray(Vec3(l.envmap_rotation.row(i))));
+    j["rotation"] = std::move(rows);
+  }
   if (!directional) j["position"] = jsonArray(l.position);
   if (l.type == LightType::Spot || l.type == LightType::Sun)
     j["direction"] = jsonArray(l.direction);
   j["intensity"] = jsonNumber(l.intensity);
-  if (!preetham) {  // the model gives a Preetham sky's colour
+  if (!preetham && !envmap) {  // the model (the image) gives a Preetham (envmap) sky's colour
     j["color"] = jsonArray(l.color);
     j["temperature_k"] = jsonNumber(l.temperature_k);
   }

@@ -61,6 +61,8 @@ const char* skyModelName(SkyModel m) {
       return "uniform";
     case SkyModel::Preetham:
       return "preetham";
+    case SkyModel::EnvMap:
+      return "envmap";
   }
   return "?";
 }
@@ -80,6 +82,16 @@ void validatePreetham(const Light& l, const std::string& where, const std::strin
   if (!(l.direction.z() < 0.0))
     throw InputError(where, field + ".sun_direction",
                      "the sun must be above the horizon (z < 0: its light travels downwards)");
+}
+
+/// An environment map needs its image and a proper rotation (kept as written, so checked here).
+void validateEnvMap(const Light& l, const std::string& where, const std::string& field) {
+  if (l.envmap.empty()) throw InputError(where, field + ".file", "an envmap sky needs an image");
+  const Mat3& R = l.envmap_rotation;
+  if (!R.allFinite() || (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
+      !(R.determinant() > 0.0))
+    throw InputError(where, field + ".rotation",
+                     "must be a rotation matrix (orthonormal to 1e-6, determinant +1)");
 }
 
 }  // namespace
@@ -283,6 +295,8 @@ void Scene::validate(const std::string& where) const {
     if (!(l.max_distance >= 0.f)) throw InputError(where, field + ".max_distance", "must be >= 0");
     if (l.type == LightType::Sky && l.sky_model == SkyModel::Preetham)
       validatePreetham(l, where, field);
+    if (l.type == LightType::Sky && l.sky_model == SkyModel::EnvMap)
+      validateEnvMap(l, where, field);
   }
   for (const auto& m : materials) {
     const std::string field = "materials['" + m.id + "']";

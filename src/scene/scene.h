@@ -140,9 +140,10 @@ struct Object {
 /// Analytic lights (area lights are emissive materials on geometry).
 enum class LightType { Point, Spot, Sun, Sky };
 
-/// How a sky's radiance varies with direction: the same from everywhere (uniform), or the
-/// clear daylight sky of Preetham, Shirley and Smits 1999 (render/sky.h).
-enum class SkyModel { Uniform, Preetham };
+/// How a sky's radiance varies with direction: the same from everywhere (uniform), the
+/// clear daylight sky of Preetham, Shirley and Smits 1999 (render/sky.h), or an environment map
+/// (an equirectangular image of the radiance from every direction, render/sky.h EnvMapSkyLight).
+enum class SkyModel { Uniform, Preetham, EnvMap };
 
 /// A light that is not geometry: isotropic point, spot (cone with a smooth edge), sun (a
 /// distant disk) or sky (radiance from every direction no geometry blocks, i.e. seen through
@@ -150,7 +151,9 @@ enum class SkyModel { Uniform, Preetham };
 /// W/sr along the axis; sun `intensity` is irradiance in W/m^2 on a surface facing it; a uniform
 /// sky's `intensity` is radiance in W sr^-1 m^-2 (from the whole sphere); a Preetham sky's is the
 /// irradiance in W/m^2 (luminance of the RGB) it gives an unoccluded horizontal surface: it
-/// shines only from above the horizon (world z > 0) and its colour comes from the model.
+/// shines only from above the horizon (world z > 0) and its colour comes from the model. An
+/// environment-map sky's `intensity` is a dimensionless factor on the image's values, which are
+/// radiance in W sr^-1 m^-2 (linear RGB), from the whole sphere.
 struct Light {
   std::string name;
   LightType type = LightType::Point;
@@ -165,6 +168,13 @@ struct Light {
   float max_distance = 0.f;            ///< point, spot: no light beyond this range (m); 0 = none
   SkyModel sky_model = SkyModel::Uniform;  ///< sky
   float turbidity = 3.f;                   ///< Preetham sky: haze, 2 (very clear) .. 10 (hazy)
+  /// Environment-map sky: the equirectangular (latitude-longitude) image; EXR is linear, PNG
+  /// and JPEG are sRGB-encoded. In the map's own frame, texel centre (u, v) = ((x + 0.5) / W,
+  /// (y + 0.5) / H) looks along (sin phi sin theta, cos phi sin theta, cos theta) with
+  /// phi = 2 pi u, theta = pi v: row 0 is the zenith (+z), u = 0 faces +y, u = 0.25 faces +x.
+  /// This is Mitsuba's envmap convention with its +Y up turned to our +Z up.
+  TextureRef envmap;
+  Mat3 envmap_rotation = Mat3::Identity();  ///< environment-map sky: map frame -> world, a rotation
   bool on = true;
   std::string object;  ///< the object (instance name) this light belongs to, e.g. a lamp; "" = none
 
@@ -175,7 +185,7 @@ struct Light {
 
 /// Names of light types as written in layout files ("point", "spot", "sun", "sky").
 const char* lightTypeName(LightType t);
-/// Names of sky models as written in layout files ("uniform", "preetham").
+/// Names of sky models as written in layout files ("uniform", "preetham", "envmap").
 const char* skyModelName(SkyModel m);
 
 /// Room types of the interior-design trade, as written in layout files ("living_room", ...).

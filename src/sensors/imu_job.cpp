@@ -14,8 +14,8 @@ ImuJobResult runImuJob(const ImuJob& job) {
   job.imu.validate();
   if (job.out.empty()) throw InputError("", "--out", "an output folder is needed");
   if (job.fit.knot_spacing_ns < 0) throw InputError("", "--knot-spacing", "must be >= 0");
-  const Trajectory traj = readTrajectory(job.trajectory);
   ImuJobResult res;
+  const Trajectory traj = readTrajectory(job.trajectory, {}, {}, &res.read);
   const ImuSequence seq = simulateImu(traj, job.imu, job.fit, nullptr, &res.fit, job.trajectory);
   const std::string comment = fmt::format(
       "interiornet IMU from the cubic B-spline (R3 x cumulative SO(3), {:.6f} s knots) of {}; "

@@ -16,6 +16,7 @@ struct ImuJob {
 };
 
 struct ImuJobResult {
+  TrajectoryReadReport read;  ///< what the reader did about the file (repeated stamps)
   SplineFitReport fit;
   size_t samples = 0;
   TimeNs first_ns = 0, last_ns = 0;

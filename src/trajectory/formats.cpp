@@ -1,9 +1,12 @@
 #include "trajectory/formats.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -47,12 +50,25 @@ Vec3 oursToSceneNet(const Vec3& p) {
 
 // ---- tokenising ----
 
+constexpr char kByteOrderMark[] = "\xEF\xBB\xBF";
+
+/// A line of column names ("timestamp tx ty ...", "timestamp,p_x,..."): it starts with a letter
+/// and is not a SceneNet `time:`/`instance:` record.
+bool isColumnNames(const std::string& line) {
+  const size_t b = line.find_first_not_of(" \t");
+  return b != std::string::npos && std::isalpha(static_cast<unsigned char>(line[b])) &&
+         line.compare(b, 5, "time:") != 0 && line.compare(b, 9, "instance:") != 0;
+}
+
 /// Calls fn(line, line_no) for every line that is not blank and not a '#' comment, with a
-/// trailing '\r' removed.
-void forEachDataLine(const std::string& text,
+/// leading UTF-8 byte-order mark (Windows editors) and a trailing '\r' removed. With `header`,
+/// a first such line that starts with a letter is taken for column names written without '#'
+/// (pandas.to_csv, spreadsheets) and skipped; a later one is the reader's error.
+void forEachDataLine(const std::string& text, bool header, TrajectoryReadReport* report,
                      const std::function<void(const std::string&, int)>& fn) {
-  size_t pos = 0;
+  size_t pos = text.rfind(kByteOrderMark, 0) == 0 ? 3 : 0;
   int line_no = 0;
+  bool first = true;
   while (pos < text.size()) {
     size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
@@ -60,8 +76,13 @@ void forEachDataLine(const std::string& text,
     pos = end + 1;
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    const size_t first = line.find_first_not_of(" \t");
-    if (first == std::string::npos || line[first] == '#') continue;
+    const size_t b = line.find_first_not_of(" \t");
+    if (b == std::string::npos || line[b] == '#') continue;
+    const bool was_first = std::exchange(first, false);
+    if (header && was_first && isColumnNames(line)) {
+      if (report) report->skipped_header = true;
+      continue;
+    }
     fn(line, line_no);
   }
 }
@@ -110,11 +131,10 @@ bool isDigits(const std::string& s) {
   return true;
 }
 
-/// A non-negative integer that fits int64.
+/// A non-negative integer that fits int64, also in scientific notation as long as it is whole
+/// ("1.403715529112143517e+18": numpy writes integer columns through '%.18e').
 bool parseCount(const std::string& s, int64_t& out) {
-  if (!isDigits(s)) return false;
-  auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return ec == std::errc() && ptr == s.data() + s.size();
+  return !s.empty() && s[0] != '-' && s[0] != '+' && parseScaledDecimal(s, 0, true, out);
 }
 
 std::string lineRef(int line_no) {
@@ -140,28 +160,79 @@ Quat unitQuat(double w, double x, double y, double z, const std::string& path, i
   return q.normalized();
 }
 
-/// Appends a pose, enforcing strictly increasing time.
-void appendPose(Trajectory& traj, TimeNs t_ns, const Pose& T_world_camera, const std::string& path,
-                int line_no) {
-  if (!traj.empty() && t_ns <= traj.poses.back().t_ns)
-    throw InputError(
-        path, lineRef(line_no),
-        fmt::format("time must increase strictly ({} s after {} s)", nsToSecondsString(t_ns),
-                    nsToSecondsString(traj.poses.back().t_ns)));
-  traj.poses.push_back({t_ns, T_world_camera});
+bool samePose(const Pose& a, const Pose& b) {
+  return a.t == b.t && (a.q.coeffs() == b.q.coeffs() || a.q.coeffs() == -b.q.coeffs());
 }
 
-Trajectory nonEmpty(Trajectory traj, const std::string& path) {
-  if (traj.empty()) throw InputError(path, "", "trajectory has no poses");
-  return traj;
-}
+/// The poses of one file as a reader finds them: time must not go back; a repeated stamp keeps
+/// the first pose (TrajectoryReadReport says why) and is counted.
+class PoseCollector {
+ public:
+  PoseCollector(const std::string& path, TrajectoryReadReport* report)
+      : path_(path), report_(report ? report : &own_) {
+    *report_ = TrajectoryReadReport{};
+  }
+  TrajectoryReadReport* report() { return report_; }
+
+  void add(TimeNs t_ns, const Pose& T_world_camera, int line_no) {
+    if (!traj_.empty()) {
+      const TimedPose& last = traj_.poses.back();
+      if (t_ns == last.t_ns) {
+        if (report_->repeated_stamps++ == 0) report_->first_repeat_line = line_no;
+        report_->repeated_with_other_pose += !samePose(last.T_world_camera, T_world_camera);
+        return;
+      }
+      if (t_ns < last.t_ns)
+        throw InputError(path_, lineRef(line_no),
+                         fmt::format("time goes back ({} s after {} s): stamps must increase "
+                                     "(sort the file by time)",
+                                     nsToSecondsString(t_ns), nsToSecondsString(last.t_ns)));
+    }
+    traj_.poses.push_back({t_ns, T_world_camera});
+  }
+
+  Trajectory finish() {
+    if (traj_.empty()) throw InputError(path_, "", "trajectory has no poses");
+    return std::move(traj_);
+  }
+
+ private:
+  const std::string& path_;
+  TrajectoryReadReport own_;
+  TrajectoryReadReport* report_;
+  Trajectory traj_;
+};
 
 // ---- readers ----
 
-Trajectory parseEuroc(const std::string& text, const std::string& path) {
-  Trajectory traj;
+/// TUM: `t tx ty tz qx qy qz qw`; commas and tabs separate too (TUM's own tools accept them).
+Trajectory parseTum(const std::string& text, const std::string& path,
+                    TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  forEachDataLine(text, true, out.report(), [&](std::string line, int line_no) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok.size() != 8)
+      throw InputError(
+          path, lineRef(line_no),
+          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
+    TimeNs t_ns = 0;
+    if (!parseSecondsToNs(tok[0], t_ns))
+      throw InputError(path, lineRef(line_no),
+                       "timestamp '" + tok[0] + "' is not a number of seconds");
+    double v[7];
+    parseNumbers(tok, 1, 7, v, path, line_no);
+    out.add(t_ns, {unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])},
+            line_no);
+  });
+  return out.finish();
+}
+
+Trajectory parseEuroc(const std::string& text, const std::string& path,
+                      TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
   size_t columns = 0;
-  forEachDataLine(text, [&](const std::string& line, int line_no) {
+  forEachDataLine(text, true, out.report(), [&](const std::string& line, int line_no) {
     const std::vector<std::string> tok = splitComma(line);
     if (tok.size() != 8 && tok.size() != 17)
       throw InputError(path, lineRef(line_no),
@@ -178,10 +249,10 @@ Trajectory parseEuroc(const std::string& text, const std::string& path) {
                        "timestamp '" + tok[0] + "' is not an integer number of nanoseconds");
     double v[16];
     parseNumbers(tok, 1, tok.size() - 1, v, path, line_no);
-    const Pose p{unitQuat(v[3], v[4], v[5], v[6], path, line_no), Vec3(v[0], v[1], v[2])};
-    appendPose(traj, t_ns, p, path, line_no);
+    out.add(t_ns, {unitQuat(v[3], v[4], v[5], v[6], path, line_no), Vec3(v[0], v[1], v[2])},
+            line_no);
   });
-  return nonEmpty(std::move(traj), path);
+  return out.finish();
 }
 
 /// Frame number -> ns at `fps` (rounded to the nearest ns).
@@ -189,9 +260,10 @@ TimeNs frameToNs(int64_t frame, double fps) {
   return static_cast<TimeNs>(std::llround(static_cast<double>(frame) * 1e9 / fps));
 }
 
-Trajectory parseIcl(const std::string& text, const std::string& path, double fps) {
-  Trajectory traj;
-  forEachDataLine(text, [&](const std::string& line, int line_no) {
+Trajectory parseIcl(const std::string& text, const std::string& path, double fps,
+                    TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  forEachDataLine(text, true, out.report(), [&](const std::string& line, int line_no) {
     const std::vector<std::string> tok = splitWhitespace(line);
     if (tok.size() != 8)
       throw InputError(
@@ -204,16 +276,17 @@ Trajectory parseIcl(const std::string& text, const std::string& path, double fps
     double v[7];
     parseNumbers(tok, 1, 7, v, path, line_no);
     const Pose T_icl{unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])};
-    appendPose(traj, frameToNs(frame, fps), iclToOurs(T_icl), path, line_no);
+    out.add(frameToNs(frame, fps), iclToOurs(T_icl), line_no);
   });
-  return nonEmpty(std::move(traj), path);
+  return out.finish();
 }
 
 /// The TUM layout, checked against SLAMBench 2's RegexPattern (timestamp `([0-9]+)[.]([0-9]+)`,
-/// decimal `([-0-9.]+)`).
-Trajectory parseSlamBench(const std::string& text, const std::string& path) {
-  Trajectory traj;
-  forEachDataLine(text, [&](const std::string& line, int line_no) {
+/// decimal `([-0-9.]+)`): no header line, no exponent.
+Trajectory parseSlamBench(const std::string& text, const std::string& path,
+                          TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  forEachDataLine(text, false, out.report(), [&](const std::string& line, int line_no) {
     const std::vector<std::string> tok = splitWhitespace(line);
     if (tok.size() != 8)
       throw InputError(
@@ -235,10 +308,10 @@ Trajectory parseSlamBench(const std::string& text, const std::string& path) {
                                      k + 1, tok[k]));
     double v[7];
     parseNumbers(tok, 1, 7, v, path, line_no);
-    const Pose p{unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])};
-    appendPose(traj, t_ns, p, path, line_no);
+    out.add(t_ns, {unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])},
+            line_no);
   });
-  return nonEmpty(std::move(traj), path);
+  return out.finish();
 }
 
 /// "key:x,y,z" -> the point, or InputError.
@@ -255,9 +328,10 @@ Vec3 sceneNetPoint(const std::string& tok, const std::string& key, const std::st
   return {v[0], v[1], v[2]};
 }
 
-Trajectory parseSceneNet(const std::string& text, const std::string& path) {
-  Trajectory traj;
-  forEachDataLine(text, [&](const std::string& line, int line_no) {
+Trajectory parseSceneNet(const std::string& text, const std::string& path,
+                         TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  forEachDataLine(text, false, out.report(), [&](const std::string& line, int line_no) {
     const std::vector<std::string> tok = splitWhitespace(line);
     if (tok[0].rfind("instance:", 0) == 0) return;  // render_info.log object list
     if (tok.size() != 3)
@@ -274,9 +348,51 @@ Trajectory parseSceneNet(const std::string& text, const std::string& path) {
       throw InputError(path, lineRef(line_no),
                        "lookat equals the camera position or lies straight above/below it: "
                        "the view direction is undefined");
-    appendPose(traj, t_ns, Pose::lookAt(eye, target, Vec3::UnitZ()), path, line_no);
+    out.add(t_ns, Pose::lookAt(eye, target, Vec3::UnitZ()), line_no);
   });
-  return nonEmpty(std::move(traj), path);
+  return out.finish();
+}
+
+/// SceneNet v1 (ankurhanda/SceneNetv1.0 `*_trajectory_random_poses_SE3_3x4.txt`): one
+/// camera-to-world [R|t] per pose as 3 lines of 4 numbers, blank lines between poses, no time
+/// (pose k at k / fps). The world is the scene's OBJ frame (Y up) and the camera OpenGL's
+/// (x right, y up, looking along -z): the shared room_89 file's camera y columns point up the
+/// file's +Y, and its positions lie inside the room at 1.65-1.85 m. Hence
+///   T_world_camera = [A 0; 0 1] [R t; 0 1] [F 0; 0 1],  A = Rx(+90 deg): (x, y, z) -> (x, -z, y),
+///   F = diag(1, -1, -1) (OpenGL camera -> OpenCV camera).
+Trajectory parseSceneNetV1(const std::string& text, const std::string& path, double fps,
+                           TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  std::vector<double> rows;  // up to 12 numbers of the pose being read
+  int first_line = 0;
+  int64_t k = 0;  // poses read
+  forEachDataLine(text, false, out.report(), [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok.size() != 4)
+      throw InputError(path, lineRef(line_no),
+                       fmt::format("expected a row of 4 numbers of a 3x4 [R|t] pose, found {} "
+                                   "fields",
+                                   tok.size()));
+    if (rows.empty()) first_line = line_no;
+    double v[4];
+    parseNumbers(tok, 0, 4, v, path, line_no);
+    rows.insert(rows.end(), v, v + 4);
+    if (rows.size() < 12) return;
+    Mat3 R;
+    R << rows[0], rows[1], rows[2], rows[4], rows[5], rows[6], rows[8], rows[9], rows[10];
+    const Vec3 t(rows[3], rows[7], rows[11]);
+    rows.clear();
+    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-3 || R.determinant() < 0)
+      throw InputError(path, lineRef(first_line),
+                       "the 3x3 part of this pose is not a rotation (orthonormal, det +1)");
+    Mat3 A;
+    A << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    const Mat3 R_cv = A * R * Vec3(1, -1, -1).asDiagonal();
+    out.add(frameToNs(k++, fps), {Quat(R_cv).normalized(), A * t}, first_line);
+  });
+  if (!rows.empty())
+    throw InputError(path, "", "the file ends inside a pose (a 3x4 [R|t] needs 3 rows of 4)");
+  return out.finish();
 }
 
 // ---- writers ----
@@ -356,6 +472,32 @@ std::string formatSceneNet(const Trajectory& traj) {
   return out;
 }
 
+/// 3x4 [R|t] blocks (parseSceneNetV1 has the frames), times on the fps grid.
+std::string formatSceneNetV1(const Trajectory& traj, double fps) {
+  std::string out;
+  Mat3 A;
+  A << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  const double period_ns = 1e9 / fps;
+  for (size_t k = 0; k < traj.size(); ++k) {
+    const TimeNs t_ns = traj.poses[k].t_ns;
+    if (std::abs(static_cast<double>(frameToNs(static_cast<int64_t>(k), fps) - t_ns)) >
+        0.01 * period_ns)
+      throw InputError("", "--fps",
+                       fmt::format("pose {} at {} s is not frame {} of a {} fps sequence starting "
+                                   "at 0: scenenet_v1 files hold no times; resample the "
+                                   "trajectory or give its frame rate",
+                                   k, nsToSecondsString(t_ns), k, fps));
+    const Pose& T = traj.poses[k].T_world_camera;
+    // A^-1 = A^T; F is its own inverse
+    const Mat3 R = A.transpose() * T.rotation() * Vec3(1, -1, -1).asDiagonal();
+    const Vec3 t = A.transpose() * T.t;
+    for (int r = 0; r < 3; ++r)
+      out += fmt::format("{:.12f} {:.12f} {:.12f} {:.12f}\n", R(r, 0), R(r, 1), R(r, 2), t[r]);
+    out += "\n";
+  }
+  return out;
+}
+
 struct FormatName {
   TrajectoryFormat fmt;
   const char* name;
@@ -364,7 +506,8 @@ constexpr FormatName kFormats[] = {{TrajectoryFormat::Tum, "tum"},
                                    {TrajectoryFormat::Euroc, "euroc"},
                                    {TrajectoryFormat::Icl, "icl"},
                                    {TrajectoryFormat::SlamBench, "slambench"},
-                                   {TrajectoryFormat::SceneNet, "scenenet"}};
+                                   {TrajectoryFormat::SceneNet, "scenenet"},
+                                   {TrajectoryFormat::SceneNetV1, "scenenet_v1"}};
 
 }  // namespace
 
@@ -394,8 +537,11 @@ std::optional<TrajectoryFormat> trajectoryFormatFromExtension(const std::string&
 TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::string& text) {
   std::string first;
   int first_no = 0;
-  forEachDataLine(text, [&](const std::string& line, int line_no) {
+  bool seen = false;
+  forEachDataLine(text, false, nullptr, [&](const std::string& line, int line_no) {
     if (!first.empty()) return;
+    // a header of column names does not tell the format: the line after it does
+    if (!std::exchange(seen, true) && isColumnNames(line)) return;
     first = line;
     first_no = line_no;
   });
@@ -407,18 +553,22 @@ TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::stri
     if (by_extension) return *by_extension;
     throw InputError(path, lineRef(first_no),
                      "cannot tell the trajectory format (" + why +
-                         "); name it (tum, euroc, icl, slambench, scenenet)");
+                         "); name it (tum, euroc, icl, slambench, scenenet, scenenet_v1)");
   };
   const std::vector<std::string> tok = splitWhitespace(first);
   if (tok[0].rfind("time:", 0) == 0 || tok[0].rfind("instance:", 0) == 0)
     return TrajectoryFormat::SceneNet;
   if (first.find(',') != std::string::npos) {
     const std::vector<std::string> cols = splitComma(first);
-    if ((cols.size() == 8 || cols.size() == 17) && isDigits(cols[0]))
-      return TrajectoryFormat::Euroc;
+    // EuRoC stamps are whole nanoseconds: digits, or numpy's '%.18e' of them (a whole number
+    // of at least 1e12 ns; as TUM seconds that would be the year 33,000)
+    int64_t ns = 0;
+    const bool ns_stamp = isDigits(cols[0]) || (parseCount(cols[0], ns) && ns >= 1'000'000'000'000);
+    if (cols.size() == 17 || (cols.size() == 8 && ns_stamp)) return TrajectoryFormat::Euroc;
     if (cols.size() == 8) return TrajectoryFormat::Tum;  // TUM tools also write commas
     return cannot(fmt::format("{} comma-separated columns", cols.size()));
   }
+  if (tok.size() == 4) return TrajectoryFormat::SceneNetV1;  // rows of 3x4 [R|t] blocks
   if (tok.size() != 8) return cannot(fmt::format("{} columns", tok.size()));
   // ICL-NUIM's frame numbers look like whole-second TUM stamps: only its extension tells
   if (by_extension == TrajectoryFormat::Icl) return TrajectoryFormat::Icl;
@@ -426,28 +576,33 @@ TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::stri
 }
 
 Trajectory parseTrajectory(const std::string& text, const std::string& path, TrajectoryFormat fmt,
-                           const TrajectoryFormatOptions& opt) {
+                           const TrajectoryFormatOptions& opt, TrajectoryReadReport* report) {
+  auto checkFps = [&](double fps) {
+    if (!(fps > 0) || !std::isfinite(fps))
+      throw InputError(path, "--fps", "the frame rate must be > 0");
+    return fps;
+  };
   switch (fmt) {
     case TrajectoryFormat::Tum:
-      return parseTumTrajectory(text, path);
+      return parseTum(text, path, report);
     case TrajectoryFormat::Euroc:
-      return parseEuroc(text, path);
+      return parseEuroc(text, path, report);
     case TrajectoryFormat::Icl:
-      if (!(opt.icl_fps > 0) || !std::isfinite(opt.icl_fps))
-        throw InputError(path, "--fps", "the ICL frame rate must be > 0");
-      return parseIcl(text, path, opt.icl_fps);
+      return parseIcl(text, path, checkFps(opt.icl_fps), report);
     case TrajectoryFormat::SlamBench:
-      return parseSlamBench(text, path);
+      return parseSlamBench(text, path, report);
     case TrajectoryFormat::SceneNet:
-      return parseSceneNet(text, path);
+      return parseSceneNet(text, path, report);
+    case TrajectoryFormat::SceneNetV1:
+      return parseSceneNetV1(text, path, checkFps(opt.pose_list_fps), report);
   }
   INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
 }
 
 Trajectory readTrajectory(const std::string& path, std::optional<TrajectoryFormat> fmt,
-                          const TrajectoryFormatOptions& opt) {
+                          const TrajectoryFormatOptions& opt, TrajectoryReadReport* report) {
   const std::string text = readTextFile(path);
-  return parseTrajectory(text, path, fmt ? *fmt : detectTrajectoryFormat(path, text), opt);
+  return parseTrajectory(text, path, fmt ? *fmt : detectTrajectoryFormat(path, text), opt, report);
 }
 
 std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,
@@ -469,6 +624,10 @@ std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,
       return formatSlamBench(traj);
     case TrajectoryFormat::SceneNet:
       return formatSceneNet(traj);
+    case TrajectoryFormat::SceneNetV1:
+      if (!(opt.pose_list_fps > 0) || !std::isfinite(opt.pose_list_fps))
+        throw InputError("", "--fps", "the frame rate must be > 0");
+      return formatSceneNetV1(traj, opt.pose_list_fps);
   }
   INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
 }
@@ -476,6 +635,11 @@ std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,
 void writeTrajectory(const std::string& path, const Trajectory& traj, TrajectoryFormat fmt,
                      const TrajectoryFormatOptions& opt) {
   writeTextAtomic(path, formatTrajectory(traj, fmt, opt));
+}
+
+Trajectory parseTumTrajectory(const std::string& text, const std::string& path,
+                              TrajectoryReadReport* report) {
+  return parseTum(text, path, report);
 }
 
 Trajectory offsetTrajectory(const Trajectory& traj, const Pose& T_cam0_cam1) {

@@ -20,6 +20,9 @@
 //            exponent, no '+'), whitespace separated, '#' comments. The reader rejects what
 //            SLAMBench would (CRLF aside, accepted everywhere), so reading checks that a file
 //            will load there.
+// scenenet_v1  SceneNet v1's `*_trajectory_random_poses_SE3_3x4.txt`: 3x4 camera-to-world
+//            [R|t] blocks in the scene's Y-up frame with an OpenGL camera, no times (pose k at
+//            k / pose_list_fps); derivation at parseSceneNetV1 in formats.cpp.
 // scenenet   SceneNet RGB-D / OppositeRenderer camera log, the text that
 //            pySceneNetRGBD/logs_to_protobuf.py turns into scenenet.proto `Pose`s:
 //            `time:T pose:x,y,z lookat:x,y,z` one line per pose (seconds, metres); the tool
@@ -53,37 +56,46 @@
 
 namespace inet {
 
-enum class TrajectoryFormat { Tum, Euroc, Icl, SlamBench, SceneNet };
+enum class TrajectoryFormat { Tum, Euroc, Icl, SlamBench, SceneNet, SceneNetV1 };
 
 /// Parameters some formats need besides the poses.
 struct TrajectoryFormatOptions {
   /// ICL frame rate: time = frame / icl_fps. 30 Hz, the Kinect rate of the ICL-NUIM sequences
   /// (SLAMBench's checkPos.py uses 0.0333 s per frame).
   double icl_fps = 30.0;
+  /// scenenet_v1 frame rate: pose k is at k / pose_list_fps (the files hold no times).
+  double pose_list_fps = 25.0;
 };
 
-/// "tum", "euroc", "icl", "slambench", "scenenet"; throws InputError("", field, ...) listing
+/// "tum", "euroc", "icl", "slambench", "scenenet", "scenenet_v1"; throws InputError("", field, ...) listing
 /// the valid names.
 TrajectoryFormat parseTrajectoryFormat(const std::string& name,
                                        const std::string& field = "--format");
 const char* trajectoryFormatName(TrajectoryFormat f);
 
-/// Guesses from extension and content: `time:`/`instance:` lines -> scenenet; comma separated
-/// with an integer first field and 8 or 17 columns -> euroc; 8 space-separated columns with an
-/// integer first field (or a .freiburg name) -> icl; with a decimal first field -> tum.
-/// SLAMBench files read as tum. Throws InputError if it cannot tell.
+/// Guesses from extension and content (a first line of column names is passed over):
+/// `time:`/`instance:` lines -> scenenet; comma separated with 17 columns, or 8 with a first
+/// field of whole nanoseconds -> euroc; 8 space-separated columns with a .freiburg name -> icl,
+/// otherwise -> tum (SLAMBench files read as tum); 4 columns -> scenenet_v1. Throws InputError
+/// if it cannot tell.
 TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::string& text);
 /// The format an output name implies: .csv euroc, .freiburg icl, .log scenenet, .txt tum.
 std::optional<TrajectoryFormat> trajectoryFormatFromExtension(const std::string& path);
 
 /// Reads any supported format (auto-detected when fmt is empty). Every reader throws InputError
 /// naming the file and line for a wrong column count, a non-number, a non-unit quaternion (off
-/// by > 1e-3), non-increasing time, or an empty file; CRLF and LF are both accepted.
+/// by > 1e-3), time going back, or an empty file. What real files do and every reader accepts:
+/// CRLF, a UTF-8 byte-order mark, scientific notation (read from the digits, so nanoseconds
+/// survive), a repeated stamp (the first pose is kept, the rest counted in `report`: see
+/// TrajectoryReadReport), and (tum, euroc, icl) a first line of column names without '#'.
+/// slambench alone stays as strict as SLAMBench's own regexes.
 Trajectory readTrajectory(const std::string& path, std::optional<TrajectoryFormat> fmt = {},
-                          const TrajectoryFormatOptions& opt = {});
+                          const TrajectoryFormatOptions& opt = {},
+                          TrajectoryReadReport* report = nullptr);
 /// The same on text in memory; `path` only names the source in messages.
 Trajectory parseTrajectory(const std::string& text, const std::string& path, TrajectoryFormat fmt,
-                           const TrajectoryFormatOptions& opt = {});
+                           const TrajectoryFormatOptions& opt = {},
+                           TrajectoryReadReport* report = nullptr);
 /// The file text. Throws InputError when the poses do not fit the format: negative time for
 /// euroc/icl/slambench, times off the icl_fps frame grid for icl, a vertical view for scenenet.
 std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,

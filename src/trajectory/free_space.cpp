@@ -15,29 +15,6 @@ namespace inet {
 
 namespace {
 
-/// The 12 vertices and 20 faces of an icosahedron whose inscribed sphere has radius r.
-void appendEnclosingIcosahedron(const Mat4& T, double r, int object, WorldTriangles& out) {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  // the unit-circumradius icosahedron has inradius 0.7946545
-  const double s = r / 0.7946544722917661 / std::sqrt(1.0 + phi * phi);
-  const double v[12][3] = {{-1, phi, 0}, {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0},
-                           {0, -1, phi}, {0, 1, phi},  {0, -1, -phi}, {0, 1, -phi},
-                           {phi, 0, -1}, {phi, 0, 1},  {-phi, 0, -1}, {-phi, 0, 1}};
-  const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                        {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  const uint32_t base = static_cast<uint32_t>(out.positions.size());
-  for (const auto& p : v) {
-    Eigen::Vector4d w = T * Eigen::Vector4d(p[0] * s, p[1] * s, p[2] * s, 1.0);
-    out.positions.push_back(w.head<3>().cast<float>());
-  }
-  for (const auto& t : f) {
-    out.triangles.push_back(Tri(base + t[0], base + t[1], base + t[2]));
-    out.object.push_back(object);
-  }
-}
-
 struct PointQueryData {
   const WorldTriangles* tris;
   Vec3 best;
@@ -114,52 +91,6 @@ bool insidePolygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>&
 
 }  // namespace
 
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = va + vb + vc;
-  if (!(std::abs(denom) > 0)) return a;  // degenerate triangle
-  return a + ab * (vb / denom) + ac * (vc / denom);
-}
-
-WorldTriangles worldTriangles(const Scene& scene) {
-  WorldTriangles out;
-  for (size_t oi = 0; oi < scene.objects.size(); ++oi) {
-    const Object& o = scene.objects[oi];
-    if (o.mesh < 0) continue;
-    const Mesh& m = scene.meshes[o.mesh];
-    const Mat4 T = o.transformAt(0.0);
-    if (m.isSphere()) {
-      appendEnclosingIcosahedron(T, m.sphere_radius, static_cast<int>(oi), out);
-      continue;
-    }
-    const uint32_t base = static_cast<uint32_t>(out.positions.size());
-    for (const Vec3f& p : m.positions) {
-      Eigen::Vector4d w = T * Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0);
-      out.positions.push_back(w.head<3>().cast<float>());
-    }
-    for (const Tri& t : m.triangles) {
-      out.triangles.push_back(Tri(base + t[0], base + t[1], base + t[2]));
-      out.object.push_back(static_cast<int>(oi));
-    }
-  }
-  return out;
-}
-
 ExactDistance::ExactDistance(WorldTriangles tris) : tris_(std::move(tris)) {
   device_ = rtcNewDevice("threads=1");  // point queries run on the caller's thread anyway
   INET_CHECK_MSG(device_ != nullptr, "rtcNewDevice failed");
@@ -224,19 +155,7 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
     lo.head<2>() -= Eigen::Vector2d::Constant(0.3);
     hi.head<2>() += Eigen::Vector2d::Constant(0.3);
   } else {
-    std::vector<Vec3> obj_lo(scene.objects.size(), lo), obj_hi(scene.objects.size(), hi);
-    for (size_t t = 0; t < tris.triangles.size(); ++t)
-      for (int c = 0; c < 3; ++c) {
-        Vec3 p = tris.positions[tris.triangles[t][c]].cast<double>();
-        obj_lo[tris.object[t]] = obj_lo[tris.object[t]].cwiseMin(p);
-        obj_hi[tris.object[t]] = obj_hi[tris.object[t]].cwiseMax(p);
-      }
-    for (size_t o = 0; o < scene.objects.size(); ++o) {
-      if (!(obj_lo[o].x() <= obj_hi[o].x())) continue;
-      if ((obj_hi[o] - obj_lo[o]).head<2>().maxCoeff() > 50.0) continue;  // a ground plane
-      lo = lo.cwiseMin(obj_lo[o]);
-      hi = hi.cwiseMax(obj_hi[o]);
-    }
+    std::tie(lo, hi) = boundsWithoutHugePlanes(scene, tris);
     if (!(lo.x() <= hi.x()))
       throw InputError(source, "geometry", "the scene is only planes larger than 50 m");
     // room for cameras at up to 2 m (and their clearance) above low scenes without a ceiling
@@ -244,49 +163,46 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
   }
   lo -= Vec3::Constant(0.1);
   hi += Vec3::Constant(0.1);
-  voxel_ = opt.voxel;
-  auto cells = [&](double v) {
-    Eigen::Array3d n = ((hi - lo) / v).array().ceil() + 1;
-    return n;
-  };
-  while (cells(voxel_).prod() > opt.max_voxels) voxel_ *= 1.25;
-  Eigen::Array3d n = cells(voxel_);
-  nx_ = static_cast<int>(n.x());
-  ny_ = static_cast<int>(n.y());
-  nz_ = static_cast<int>(n.z());
-  origin_ = lo;
-  const size_t count = static_cast<size_t>(nx_) * ny_ * nz_;
+  OccupancyGrid grid = voxelizeTriangles(tris, lo, hi, opt.voxel, opt.max_voxels);
+  voxel_ = grid.voxel;
+  nx_ = grid.nx;
+  ny_ = grid.ny;
+  nz_ = grid.nz;
+  origin_ = grid.origin;
+  const size_t count = grid.size();
+  const std::vector<uint8_t>& occupied = grid.occupied;
 
-  // ---- occupancy: voxels whose centre lies within h of a triangle ----
-  const double h = voxel_ * std::sqrt(3.0) / 2.0;
-  std::vector<uint8_t> occupied(count, 0);
-  tbb::parallel_for(size_t(0), tris.triangles.size(), [&](size_t t) {
-    const Tri& tri = tris.triangles[t];
-    const Vec3 a = tris.positions[tri[0]].cast<double>(), b = tris.positions[tri[1]].cast<double>(),
-               c = tris.positions[tri[2]].cast<double>();
-    Vec3 tlo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(h);
-    Vec3 thi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(h);
-    Eigen::Vector3i i0 = ((tlo - origin_) / voxel_).array().ceil().cast<int>().max(0);
-    Eigen::Vector3i i1 = ((thi - origin_) / voxel_).array().floor().cast<int>();
-    i1 = i1.cwiseMin(Eigen::Vector3i(nx_ - 1, ny_ - 1, nz_ - 1));
-    Vec3 normal = (b - a).cross(c - a);
-    const double area2 = normal.norm();
-    if (area2 > 0) normal /= area2;
-    for (int k = i0.z(); k <= i1.z(); ++k)
-      for (int j = i0.y(); j <= i1.y(); ++j)
-        for (int i = i0.x(); i <= i1.x(); ++i) {
-          const Vec3 p = origin_ + voxel_ * Vec3(i, j, k);
-          if (area2 > 0 && std::abs(normal.dot(p - a)) > h) continue;
-          if ((closestPointOnTriangle(p, a, b, c) - p).squaredNorm() > h * h) continue;
-          std::atomic_ref<uint8_t>(occupied[index(i, j, k)]).store(1, std::memory_order_relaxed);
-        }
-  });
+  // ---- exact EDT of the occupancy, separably along x, y, z; outdoors is forced to 0 after ----
+  // "no geometry on this line" is a large finite value (not infinity, which would make the
+  // parabola intersections NaN); it loses against every real distance
+  const double none = 1e20;
+  std::vector<double> sq(count);
+  for (size_t id = 0; id < count; ++id) sq[id] = occupied[id] ? 0.0 : none;
+  auto pass = [&](int n, int lines_a, int lines_b, auto at) {
+    tbb::parallel_for(0, lines_b, [&](int b) {
+      std::vector<double> f(n), d(n), z(n + 1);
+      std::vector<int> v(n);
+      for (int a = 0; a < lines_a; ++a) {
+        for (int q = 0; q < n; ++q) f[q] = sq[at(q, a, b)];
+        edt1d(f.data(), n, d.data(), v.data(), z.data());
+        for (int q = 0; q < n; ++q) sq[at(q, a, b)] = d[q];
+      }
+    });
+  };
+  pass(nx_, ny_, nz_, [&](int q, int a, int b) { return index(q, a, b); });
+  pass(ny_, nx_, nz_, [&](int q, int a, int b) { return index(a, q, b); });
+  pass(nz_, nx_, ny_, [&](int q, int a, int b) { return index(a, b, q); });
 
   // ---- indoors ----
   std::vector<uint8_t> indoor(count, 0);
   // ---- keep the big connected regions: the insides of closed objects (a wardrobe, a sofa's
-  // box) are enclosed too, but no camera can get there. Returns the biggest region's volume.
-  auto keepBigRegions = [&]() {
+  // box, a wall or a floor slab modelled as a closed box) are enclosed too, but no camera can
+  // get there. With `by_room`, a region's size is its room for a camera: its voxels at least
+  // 0.3 m from the geometry (a slab's or a wall's inside has none, however large); otherwise
+  // its volume. Keeps the biggest region and any other of at least `keep_m3`; returns the
+  // biggest one's size (m^3).
+  const double roomy_sq = std::pow(0.3 / voxel_, 2);  // sq is in voxels^2
+  auto keepBigRegions = [&](bool by_room, double keep_m3) {
     std::vector<int> comp(count, -1);
     std::vector<size_t> sizes, stack;
     for (size_t start = 0; start < count; ++start) {
@@ -298,7 +214,7 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
       while (!stack.empty()) {
         size_t v = stack.back();
         stack.pop_back();
-        ++sizes[id];
+        sizes[id] += !by_room || sq[v] >= roomy_sq;
         const int i = static_cast<int>(v % nx_), j = static_cast<int>((v / nx_) % ny_),
                   k = static_cast<int>(v / (static_cast<size_t>(nx_) * ny_));
         auto visit = [&](int a, int b, int c) {
@@ -313,10 +229,9 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
       }
     }
     const size_t biggest = sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
-    const size_t room_sized = static_cast<size_t>(20.0 / (voxel_ * voxel_ * voxel_));
+    const size_t keep = static_cast<size_t>(keep_m3 / (voxel_ * voxel_ * voxel_));
     for (size_t id = 0; id < count; ++id)
-      if (comp[id] >= 0 && sizes[comp[id]] != biggest && sizes[comp[id]] < room_sized)
-        indoor[id] = 0;
+      if (comp[id] >= 0 && sizes[comp[id]] != biggest && sizes[comp[id]] < keep) indoor[id] = 0;
     return biggest * voxel_ * voxel_ * voxel_;
   };
 
@@ -370,33 +285,27 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
     }
     for (size_t id = 0; id < count; ++id) indoor[id] = !outside[id];
   }
-  // an open scene (a room without a ceiling, furniture on a plate) encloses nothing room-sized
-  // (4 m^3, a small toilet): then everything in the box counts
-  if (keepBigRegions() < 4.0 && scene.rooms.empty()) {
-    std::fill(indoor.begin(), indoor.end(), 1);
-    keepBigRegions();
+  // an open scene (a room with holes for windows or missing walls, a room without a ceiling,
+  // furniture on a plate) encloses no room for a camera (1 m^3 of it: a small toilet has more).
+  // Then what is roofed counts: the free voxels with geometry both above and below them in
+  // their column (SceneNet's kitchen2 has three walls, but its floor and ceiling); with less
+  // than 1 m^3 of room there either (no ceiling at all), everything in the box counts. Either
+  // way, the insides of closed objects (under 1 m^3) do not.
+  if (keepBigRegions(true, 2.0) < 1.0 && scene.rooms.empty()) {
+    open_ = true;
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        int top = -1, bottom = nz_;
+        for (int k = 0; k < nz_; ++k)
+          if (occupied[index(i, j, k)]) top = k, bottom = std::min(bottom, k);
+        for (int k = 0; k < nz_; ++k) indoor[index(i, j, k)] = k > bottom && k < top;
+      }
+    if (keepBigRegions(true, 2.0) < 1.0) {
+      std::fill(indoor.begin(), indoor.end(), 1);
+      keepBigRegions(false, 1.0);
+    }
   }
 
-  // ---- exact EDT of the occupancy, separably along x, y, z; outdoors is forced to 0 after ----
-  // "no geometry on this line" is a large finite value (not infinity, which would make the
-  // parabola intersections NaN); it loses against every real distance
-  const double none = 1e20;
-  std::vector<double> sq(count);
-  for (size_t id = 0; id < count; ++id) sq[id] = occupied[id] ? 0.0 : none;
-  auto pass = [&](int n, int lines_a, int lines_b, auto at) {
-    tbb::parallel_for(0, lines_b, [&](int b) {
-      std::vector<double> f(n), d(n), z(n + 1);
-      std::vector<int> v(n);
-      for (int a = 0; a < lines_a; ++a) {
-        for (int q = 0; q < n; ++q) f[q] = sq[at(q, a, b)];
-        edt1d(f.data(), n, d.data(), v.data(), z.data());
-        for (int q = 0; q < n; ++q) sq[at(q, a, b)] = d[q];
-      }
-    });
-  };
-  pass(nx_, ny_, nz_, [&](int q, int a, int b) { return index(q, a, b); });
-  pass(ny_, nx_, nz_, [&](int q, int a, int b) { return index(a, q, b); });
-  pass(nz_, nx_, ny_, [&](int q, int a, int b) { return index(a, b, q); });
   const double far = voxel_ * (nx_ + ny_ + nz_);
   // the grid's faces count as obstacles too: an open scene (no walls on a side) must not let a
   // camera sit at the edge of the grid, where every step leaves it
@@ -409,6 +318,148 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
         const int border = std::min({i, j, k, nx_ - 1 - i, ny_ - 1 - j, nz_ - 1 - k});
         dist_[id] = static_cast<float>(std::min({far, std::sqrt(sq[id]) * voxel_, border * voxel_}));
       }
+  Vec3 sum = Vec3::Zero();
+  size_t free = 0;
+  for (int k = 0; k < nz_; ++k)
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i)
+        if (dist_[index(i, j, k)] > 0.f) sum += origin_ + voxel_ * Vec3(i, j, k), ++free;
+  if (free > 0) indoor_centre_ = sum / static_cast<double>(free);
+  if (!scene.rooms.empty())
+    findRoomFloors(scene);
+  else
+    findMeshFloors(occupied, indoor);
+}
+
+void FreeSpace::findRoomFloors(const Scene& scene) {
+  const double widen = 0.15;  // as for "indoors": doorways lie in the walls
+  std::vector<std::vector<float>> per_column(static_cast<size_t>(nx_) * ny_);
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const Eigen::Vector2d p = (origin_ + voxel_ * Vec3(i, j, 0)).head<2>();
+      std::vector<float>& floors = per_column[i + static_cast<size_t>(nx_) * j];
+      for (const Room& r : scene.rooms) {
+        bool in = insidePolygon(p, r.outline);
+        for (size_t e = 0; !in && e < r.outline.size(); ++e)
+          in = pointSegmentDistance(p, r.outline[e], r.outline[(e + 1) % r.outline.size()]) <=
+               widen;
+        if (in) floors.push_back(static_cast<float>(r.floor_z));
+      }
+      std::sort(floors.begin(), floors.end());
+      floors.erase(std::unique(floors.begin(), floors.end()), floors.end());
+    }
+  for (const Room& r : scene.rooms) floor_levels_.push_back(r.floor_z);
+  std::sort(floor_levels_.begin(), floor_levels_.end());
+  floor_levels_.erase(std::unique(floor_levels_.begin(), floor_levels_.end()),
+                      floor_levels_.end());
+  floor_start_.assign(1, 0);
+  for (const auto& f : per_column) {
+    column_floors_.insert(column_floors_.end(), f.begin(), f.end());
+    floor_start_.push_back(static_cast<uint32_t>(column_floors_.size()));
+  }
+}
+
+void FreeSpace::findMeshFloors(const std::vector<uint8_t>& occupied,
+                               const std::vector<uint8_t>& indoor) {
+  // every indoor surface top (k of the free voxel on it); those with at least 1 m of free space
+  // above them give the area per height from which the levels are found (floor under a desk
+  // is a floor surface of its column, but only open floor says where the floors are)
+  const int min_free = static_cast<int>(std::ceil(1.0 / voxel_));
+  const double cell = voxel_ * voxel_;
+  std::vector<double> area(nz_, 0.0);
+  std::vector<std::vector<int>> tops(static_cast<size_t>(nx_) * ny_);
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i)
+      for (int k = 1; k < nz_; ++k) {
+        if (!occupied[index(i, j, k - 1)] || occupied[index(i, j, k)] || !indoor[index(i, j, k)])
+          continue;
+        tops[i + static_cast<size_t>(nx_) * j].push_back(k);
+        int run = 0;
+        while (k + run < nz_ && !occupied[index(i, j, k + run)] && run < min_free) ++run;
+        if (run >= min_free) area[k] += cell;
+      }
+  // levels: runs of heights whose tops (within a voxel) cover >= 2 m^2 and 20 % of the most
+  // covered height; in each run the height with the most area (ties: the lower); each level at
+  // least 2 m above the one under it
+  std::vector<double> band(nz_, 0.0);
+  for (int k = 0; k < nz_; ++k)
+    for (int d = -1; d <= 1; ++d)
+      if (k + d >= 0 && k + d < nz_) band[k] += area[k + d];
+  const double most = band.empty() ? 0.0 : *std::max_element(band.begin(), band.end());
+  std::vector<int> levels;
+  for (int k = 0; k < nz_;) {
+    if (!(band[k] >= 2.0 && band[k] >= 0.2 * most)) {
+      ++k;
+      continue;
+    }
+    int peak = k;
+    for (; k < nz_ && band[k] >= 2.0 && band[k] >= 0.2 * most; ++k)
+      if (area[k] > area[peak]) peak = k;
+    if (levels.empty() || (peak - levels.back()) * voxel_ >= 2.0) levels.push_back(peak);
+  }
+  // a voxel's surface is within half a voxel diagonal of its centre: the floor surface lies
+  // about one voxel under the first free voxel
+  auto surfaceZ = [&](int k) { return origin_.z() + voxel_ * (k - 1); };
+  for (int k : levels) floor_levels_.push_back(surfaceZ(k));
+  floor_start_.assign(1, 0);
+  for (const std::vector<int>& column : tops) {
+    for (int k : column)
+      for (int l : levels)
+        if (std::abs(k - l) <= 1) {
+          column_floors_.push_back(static_cast<float>(surfaceZ(k)));
+          break;
+        }
+    floor_start_.push_back(static_cast<uint32_t>(column_floors_.size()));
+  }
+}
+
+double FreeSpace::floorBelow(const Vec3& p) const {
+  const int i = static_cast<int>(std::lround((p.x() - origin_.x()) / voxel_));
+  const int j = static_cast<int>(std::lround((p.y() - origin_.y()) / voxel_));
+  double best = std::numeric_limits<double>::quiet_NaN();
+  if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return best;
+  const size_t c = i + static_cast<size_t>(nx_) * j;
+  for (uint32_t f = floor_start_[c]; f < floor_start_[c + 1]; ++f)
+    if (column_floors_[f] <= p.z() + 0.05) best = column_floors_[f];
+  return best;
+}
+
+bool FreeSpace::isIndoors(const Vec3& p) const {
+  const Vec3 g = (p - origin_) / voxel_;
+  const int i = static_cast<int>(std::lround(g.x())), j = static_cast<int>(std::lround(g.y())),
+            k = static_cast<int>(std::lround(g.z()));
+  if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) return false;
+  return dist_[index(i, j, k)] >= 0.f;
+}
+
+bool FreeSpace::seesGeometry(const Vec3& p, const Vec3& dir, double max_range) const {
+  const double n = dir.norm();
+  if (!(n > 0)) return false;
+  const Vec3 d = dir / n;
+  for (double t = 0.0; t <= max_range;) {
+    const Vec3 g = (p + t * d - origin_) / voxel_;
+    const int i = static_cast<int>(std::lround(g.x())), j = static_cast<int>(std::lround(g.y())),
+              k = static_cast<int>(std::lround(g.z()));
+    if (i < 0 || j < 0 || k < 0 || i >= nx_ || j >= ny_ || k >= nz_) return false;
+    const float v = dist_[index(i, j, k)];
+    if (v < 0.f) return false;
+    if (v == 0.f) return true;
+    t += std::max(voxel_, static_cast<double>(v) - voxel_);
+  }
+  return false;
+}
+
+double FreeSpace::indoorVolume() const {
+  size_t n = 0;
+  for (float d : dist_) n += d > 0.f;
+  return static_cast<double>(n) * voxel_ * voxel_ * voxel_;
+}
+
+double FreeSpace::freeVolume(double clearance) const {
+  const double h2 = voxel_ * std::sqrt(3.0);
+  size_t n = 0;
+  for (float d : dist_) n += d > 0.f && d - h2 >= clearance;
+  return static_cast<double>(n) * voxel_ * voxel_ * voxel_;
 }
 
 double FreeSpace::field(const Vec3& p) const {
@@ -452,18 +503,20 @@ Vec3 FreeSpace::gradient(const Vec3& p) const {
   return g;
 }
 
-std::vector<FreeSpace::FreeVoxel> FreeSpace::freeCentres(double clearance, double z_lo,
-                                                         double z_hi) const {
+std::vector<FreeSpace::FreeVoxel> FreeSpace::freeCentres(double clearance, double h_lo,
+                                                         double h_hi) const {
   std::vector<FreeVoxel> out;
   const double h2 = voxel_ * std::sqrt(3.0);
-  for (int k = 0; k < nz_; ++k) {
-    double z = origin_.z() + voxel_ * k;
-    if (z < z_lo || z > z_hi) continue;
+  for (int k = 0; k < nz_; ++k)
     for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i)
-        if (const double c = dist_[index(i, j, k)] - h2; c >= clearance)
-          out.push_back({origin_ + voxel_ * Vec3(i, j, k), c});
-  }
+      for (int i = 0; i < nx_; ++i) {
+        const double c = dist_[index(i, j, k)] - h2;
+        if (!(c >= clearance)) continue;
+        const Vec3 centre = origin_ + voxel_ * Vec3(i, j, k);
+        const double floor = floorBelow(centre);
+        if (!(centre.z() - floor >= h_lo && centre.z() - floor <= h_hi)) continue;  // NaN: none
+        out.push_back({centre, c, floor});
+      }
   return out;
 }
 

@@ -15,6 +15,15 @@
 // The grid's faces count as geometry (an open scene's camera stays inside the box).
 // Of that, only the biggest connected free region (and any other larger than 20 m^3) stays
 // indoors: the enclosed insides of closed furniture are unreachable.
+//
+// Floors: a camera's height is measured from the floor below it, not from z = 0, so floors at
+// any height, tall rooms and several storeys work alike. With rooms, a room's floor_z is the
+// floor of every column inside its outline. Without (imported mesh scenes), floors are found in
+// the grid: every indoor surface top (an occupied voxel under a free one) with at least 1 m of
+// free space above it is a candidate; the candidate heights whose surfaces together cover at
+// least 2 m^2 and 20 % of the largest such height are floor levels, and a level counts only if
+// it lies at least 2 m above the level below it (a storey), so a bed or a row of desks is not a
+// floor. A column's floor below a point is the highest surface top of a floor level under it.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -23,19 +32,10 @@
 #include <vector>
 
 #include "core/pose.h"
+#include "scene/occupancy.h"
 #include "scene/scene.h"
 
 namespace inet {
-
-/// World-space triangles of a scene's static geometry (moving objects at scene time 0).
-struct WorldTriangles {
-  std::vector<Vec3f> positions;
-  std::vector<Tri> triangles;
-  std::vector<int> object;  ///< per triangle: index into Scene::objects
-};
-/// Flattens every object's mesh into world space. Analytic spheres become 20-sided polyhedra
-/// that enclose them, so distances stay conservative.
-WorldTriangles worldTriangles(const Scene& scene);
 
 /// Exact distance from a point to the nearest triangle (Embree BVH + point query).
 class ExactDistance {
@@ -56,9 +56,6 @@ class ExactDistance {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };
-
-/// The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 struct FreeSpaceOptions {
   double voxel = 0.05;            ///< grid spacing (m)
@@ -92,14 +89,35 @@ class FreeSpace {
   int nx() const { return nx_; }
   int ny() const { return ny_; }
   int nz() const { return nz_; }
-  /// A voxel centre and the lower bound of its distance to the geometry (m).
+  /// A voxel centre, the lower bound of its distance to the geometry (m) and the floor below it.
   struct FreeVoxel {
     Vec3 centre;
     double clearance;
+    double floor_z;
   };
-  /// Voxels that are indoors with a clearance >= `clearance`, centres between heights z_lo and
-  /// z_hi.
-  std::vector<FreeVoxel> freeCentres(double clearance, double z_lo, double z_hi) const;
+  /// Voxels that are indoors with a clearance >= `clearance`, centres between heights h_lo and
+  /// h_hi above the floor below them (see the header comment).
+  std::vector<FreeVoxel> freeCentres(double clearance, double h_lo, double h_hi) const;
+  /// z of the floor under p (the highest floor surface of p's column at most 5 cm above p), or
+  /// NaN when p's column has none.
+  double floorBelow(const Vec3& p) const;
+  /// The floor heights found (rooms: their distinct floor_z), lowest first.
+  const std::vector<double>& floorLevels() const { return floor_levels_; }
+  /// Does the scene enclose no room for a camera (a mesh scene with missing walls or holes)?
+  /// Then "indoors" is what is roofed (see the header comment), and a camera's view should be
+  /// kept towards it: isIndoors tells.
+  bool isOpen() const { return open_; }
+  /// Is p in the grid and indoors (occupied voxels count: walls are indoors)?
+  bool isIndoors(const Vec3& p) const;
+  /// Does the ray from p along dir meet geometry within max_range (m), rather than leave the
+  /// grid or the indoors? (Sphere tracing on the grid: steps of the voxel distance field.)
+  bool seesGeometry(const Vec3& p, const Vec3& dir, double max_range) const;
+  /// The centre of the indoor free voxels (open scenes: where a view should turn back to).
+  const Vec3& indoorCentre() const { return indoor_centre_; }
+  /// Indoor free volume (m^3), and the part of it at least `clearance` from the geometry: what
+  /// an error message can say about a scene with no room for a camera.
+  double indoorVolume() const;
+  double freeVolume(double clearance) const;
 
  private:
   size_t index(int i, int j, int k) const { return (static_cast<size_t>(k) * ny_ + j) * nx_ + i; }
@@ -111,6 +129,16 @@ class FreeSpace {
   Vec3 origin_ = Vec3::Zero();
   int nx_ = 0, ny_ = 0, nz_ = 0;
   std::vector<float> dist_;       ///< EDT between voxel centres (m); 0 occupied, -1 outdoors
+  /// Floor surfaces per column c = i + nx * j: column_floors_[floor_start_[c] ..
+  /// floor_start_[c + 1]), rising z.
+  std::vector<uint32_t> floor_start_;
+  std::vector<float> column_floors_;
+  std::vector<double> floor_levels_;
+  bool open_ = false;
+  Vec3 indoor_centre_ = Vec3::Zero();
+
+  void findRoomFloors(const Scene& scene);
+  void findMeshFloors(const std::vector<uint8_t>& occupied, const std::vector<uint8_t>& indoor);
 };
 
 }  // namespace inet

@@ -88,6 +88,30 @@ const char* motionTypeName(MotionType t) {
   return "?";
 }
 
+namespace {
+
+/// Why no start was found, with what was tried and what to change.
+std::string noStartMessage(const FreeSpace& space, const RandomTrajectoryOptions& opt,
+                           double clear) {
+  std::string floors;
+  for (double z : space.floorLevels())  // (no "-0.00")
+    floors += fmt::format("{}{:.2f}", floors.empty() ? "" : ", ", std::abs(z) < 0.005 ? 0.0 : z);
+  const std::string what = fmt::format(
+      "no place {:.2f} m from all geometry at {:.1f}-{:.1f} m above a floor for a camera "
+      "(tried a {:.3f} m voxel grid: {:.1f} m^3 of free space indoors, {:.1f} m^3 of it {:.2f} m "
+      "from the geometry; floors at z = {} m)",
+      opt.clearance, opt.min_height, opt.max_height, space.voxel(), space.indoorVolume(),
+      space.freeVolume(clear), clear, floors.empty() ? "none found" : floors);
+  if (space.floorLevels().empty())
+    return what + ": no floor was found (a level surface of at least 2 m^2 with free space "
+                  "above it); is the up axis right (--up y for Y-up files)?";
+  if (space.freeVolume(clear) < 0.1)
+    return what + ": the scene is too tight or not enclosed; try a smaller --clearance";
+  return what + ": try other --min-height/--max-height for this scene";
+}
+
+}  // namespace
+
 RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
                                           const RandomTrajectoryOptions& opt,
                                           const std::string& source) {
@@ -100,16 +124,12 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   const double clear = opt.clearance + kMargin;
   const bool forward = opt.type == MotionType::LookForward;
 
-  // ---- start: a random free voxel at a comfortable height ----
-  const double h_lo = opt.min_height, h_hi = opt.max_height;
+  // ---- start: a random free voxel at a comfortable height above its floor ----
   std::vector<FreeSpace::FreeVoxel> starts =
-      space.freeCentres(clear + 0.2, h_lo + 0.2, h_hi - 0.2);
-  if (starts.empty()) starts = space.freeCentres(clear, h_lo, h_hi);
+      space.freeCentres(clear + 0.2, opt.min_height + 0.2, opt.max_height - 0.2);
+  if (starts.empty()) starts = space.freeCentres(clear, opt.min_height, opt.max_height);
   if (starts.empty())
-    throw InputError(source, "free space",
-                     fmt::format("no place {:.2f} m from all geometry at {:.1f}-{:.1f} m height "
-                                 "for a camera",
-                                 opt.clearance, h_lo, h_hi));
+    throw InputError(source, "free space", noStartMessage(space, opt, clear));
   // start in open space: among the quarter of the candidates farthest from any geometry (the
   // middles of the larger rooms), so a trajectory does not open in a closet facing a wall; the
   // rest keep their grid order, so the draw below is deterministic
@@ -123,7 +143,12 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   order.resize(keep);
   std::sort(order.begin(), order.end());
   State s;
-  s.cam = starts[order[std::min(keep - 1, static_cast<size_t>(rng.uniformDouble() * keep))]].centre;
+  const FreeSpace::FreeVoxel& start =
+      starts[order[std::min(keep - 1, static_cast<size_t>(rng.uniformDouble() * keep))]];
+  s.cam = start.centre;
+  // heights are kept above the start's floor: its storey (z = 0 in procedural layouts)
+  const double floor_z = start.floor_z;
+  const double h_lo = floor_z + opt.min_height, h_hi = floor_z + opt.max_height;
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
   // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
@@ -135,6 +160,8 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
     const Vec3 dir(std::cos(a), std::sin(a), 0);
     double range = 0.0;
     while (range < 5.0 && space.lowerBound(s.cam + (range + 0.1) * dir) > 0.0) range += 0.1;
+    // an open scene: not into the void past a missing wall
+    if (space.isOpen() && !space.seesGeometry(s.cam, dir, 15.0)) range = -0.5;
     if (range > best_range) best_range = range, best_heading = a;
   }
   s.target = s.cam + Vec3(look_dist * std::cos(best_heading), look_dist * std::sin(best_heading), -0.3);
@@ -283,9 +310,16 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       // hand-held: a firm spring keeps the look-at point 0.3 m below the camera or lower, so
       // the hard limit below is a last resort (a clamp stops the view's vertical turns dead)
       const bool below = opt.type == MotionType::HandHeld;
-      const double z_hi = below ? s.cam.z() - 0.3 : 2.5;
+      const double z_hi = below ? s.cam.z() - 0.3 : floor_z + 2.5;
       if (s.target.z() > z_hi) at.z() -= (below ? 30.0 : 6.0) * (s.target.z() - z_hi);
-      if (s.target.z() < 0.3) at.z() += 6.0 * (0.3 - s.target.z());
+      if (s.target.z() < floor_z + 0.3) at.z() += 6.0 * (floor_z + 0.3 - s.target.z());
+      // an open scene: a view that would stare past a missing wall into the void is turned
+      // back towards the middle of the scene
+      if (space.isOpen() && !space.seesGeometry(s.cam, s.target - s.cam, 15.0)) {
+        Vec3 back = space.indoorCentre() - s.target;
+        back.z() = 0.0;
+        at += 6.0 * back;
+      }
       v_target += at * kSimDt;
       // the look-at body is carried along with the camera in part (kCarry), so the view's turn
       // rate comes mostly from its own motion (w_mult) rather than from the camera's (v_mult)

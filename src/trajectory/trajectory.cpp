@@ -1,7 +1,8 @@
 #include "trajectory/trajectory.h"
 
+#include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -25,86 +26,79 @@ Pose Trajectory::poseAt(TimeNs t_ns) const {
   return out;
 }
 
-bool parseSecondsToNs(const std::string& s, TimeNs& out) {
-  if (s.empty()) return false;
+bool parseScaledDecimal(const std::string& s, int scale_pow10, bool exact, int64_t& out) {
   size_t i = 0;
   bool neg = false;
-  if (s[0] == '-' || s[0] == '+') {
-    neg = s[0] == '-';
-    i = 1;
-  }
-  int64_t whole = 0, frac = 0;
-  int frac_digits = 0, int_digits = 0;
-  for (; i < s.size() && s[i] != '.'; ++i) {
-    if (s[i] < '0' || s[i] > '9' || int_digits > 10) return false;
-    whole = whole * 10 + (s[i] - '0');
-    ++int_digits;
-  }
-  if (i < s.size()) {
-    for (++i; i < s.size(); ++i) {
-      if (s[i] < '0' || s[i] > '9') return false;
-      if (frac_digits < 9) {
-        frac = frac * 10 + (s[i] - '0');
-        ++frac_digits;
-      }
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
+  std::string mantissa;  // every digit, the point removed
+  int frac_digits = 0;
+  bool point = false;
+  for (; i < s.size(); ++i) {
+    if (s[i] >= '0' && s[i] <= '9') {
+      mantissa += s[i];
+      frac_digits += point;
+    } else if (s[i] == '.' && !point) {
+      point = true;
+    } else {
+      break;
     }
   }
-  if (int_digits == 0 && frac_digits == 0) return false;
-  for (int d = frac_digits; d < 9; ++d) frac *= 10;
-  out = whole * 1000000000LL + frac;
-  if (neg) out = -out;
+  if (mantissa.empty()) return false;
+  int64_t exponent = 0;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    bool exp_neg = false;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) exp_neg = s[i++] == '-';
+    if (i == s.size()) return false;
+    for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i) {
+      exponent = exponent * 10 + (s[i] - '0');
+      if (exponent > 100000) return false;
+    }
+    if (exp_neg) exponent = -exponent;
+  }
+  if (i != s.size()) return false;
+  // value = mantissa * 10^p: shift the digit string, then cut at the point
+  const int64_t p = exponent - frac_digits + scale_pow10;
+  const size_t first = std::min(mantissa.find_first_not_of('0'), mantissa.size());
+  mantissa.erase(0, first);
+  std::string whole = mantissa;
+  bool round_up = false;
+  if (p >= 0) {
+    if (!mantissa.empty()) whole.append(static_cast<size_t>(std::min<int64_t>(p, 40)), '0');
+  } else {
+    const size_t cut = static_cast<size_t>(std::min<int64_t>(-p, 100000));
+    const std::string fraction = cut >= mantissa.size()
+                                     ? std::string(cut - mantissa.size(), '0') + mantissa
+                                     : mantissa.substr(mantissa.size() - cut);
+    whole = cut >= mantissa.size() ? std::string() : mantissa.substr(0, mantissa.size() - cut);
+    if (exact && fraction.find_first_not_of('0') != std::string::npos) return false;
+    round_up = !fraction.empty() && fraction[0] >= '5';
+  }
+  if (whole.size() > 19) return false;
+  uint64_t v = 0;
+  for (char c : whole) v = v * 10 + static_cast<uint64_t>(c - '0');
+  v += round_up;
+  if (v > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) return false;
+  out = neg ? -static_cast<int64_t>(v) : static_cast<int64_t>(v);
   return true;
 }
 
-Trajectory readTumTrajectory(const std::string& path) {
-  return parseTumTrajectory(readTextFile(path), path);
+bool parseSecondsToNs(const std::string& s, TimeNs& out) {
+  return parseScaledDecimal(s, 9, false, out);
 }
 
-Trajectory parseTumTrajectory(const std::string& text, const std::string& path) {
-  Trajectory traj;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    for (char& c : line)
-      if (c == ',' || c == '\t' || c == '\r') c = ' ';
-    size_t first = line.find_first_not_of(' ');
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    std::vector<std::string> tok;
-    std::string t;
-    while (fields >> t) tok.push_back(t);
-    std::string where = fmt::format("line {}", line_no);
-    if (tok.size() != 8)
-      throw InputError(
-          path, where,
-          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
-    TimedPose p;
-    if (!parseSecondsToNs(tok[0], p.t_ns))
-      throw InputError(path, where, "timestamp '" + tok[0] + "' is not a number of seconds");
-    double v[7];
-    for (int k = 0; k < 7; ++k) {
-      char* end = nullptr;
-      v[k] = std::strtod(tok[k + 1].c_str(), &end);
-      if (end == tok[k + 1].c_str() || *end != '\0' || !std::isfinite(v[k]))
-        throw InputError(
-            path, where,
-            "field " + std::to_string(k + 2) + " '" + tok[k + 1] + "' is not a finite number");
-    }
-    p.T_world_camera.t = Vec3(v[0], v[1], v[2]);
-    Quat q(v[6], v[3], v[4], v[5]);
-    if (std::abs(q.norm() - 1.0) > 1e-3)
-      throw InputError(path, where, fmt::format("quaternion norm {:.6f} is not 1", q.norm()));
-    p.T_world_camera.q = q.normalized();
-    if (!traj.poses.empty() && p.t_ns <= traj.poses.back().t_ns)
-      throw InputError(path, where,
-                       "timestamps must increase strictly (" + tok[0] + " after " +
-                           nsToSecondsString(traj.poses.back().t_ns) + ")");
-    traj.poses.push_back(p);
-  }
-  if (traj.empty()) throw InputError(path, "", "trajectory has no poses");
-  return traj;
+std::string TrajectoryReadReport::summary() const {
+  std::string out;
+  if (repeated_stamps > 0)
+    out = fmt::format(
+        "{} pose(s) repeat the stamp before them (first at line {}; {} with another pose) and "
+        "were dropped: the first pose of each stamp is kept, as evo does",
+        repeated_stamps, first_repeat_line, repeated_with_other_pose);
+  return out;
+}
+
+Trajectory readTumTrajectory(const std::string& path, TrajectoryReadReport* report) {
+  return parseTumTrajectory(readTextFile(path), path, report);
 }
 
 std::string formatTumTrajectory(const Trajectory& traj, const std::string& comment) {

@@ -22,6 +22,7 @@ std::string layoutWith(
   "meshes": [{"id": "box", "primitive": "box"})" +
          mesh_json + R"(],
   "materials": [{"id": "white", "type": "lambertian", "albedo": [0.8, 0.8, 0.8]}],
+  "lights": [{"name": "bulb", "type": "point", "position": [0, 0, 2], "intensity": 3}],
   "objects": [)" +
          object_json + "]}\n";
 }

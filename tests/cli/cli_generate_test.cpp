@@ -172,24 +172,29 @@ TEST(Generate, MotionBlurKeepsGroundTruthAtTheTimestamp) {
   EXPECT_EQ(depth_differs, 6);  // 3 frames x (PNG + EXR)
 }
 
-pid_t spawn(const std::string& args) {
+/// Starts the binary with `args`, its stderr into `err_file` ("" = discarded).
+pid_t spawn(const std::string& args, const std::string& err_file = "") {
   pid_t pid = fork();
   if (pid == 0) {
-    std::string cmd = std::string("exec ") + INET_BINARY + " " + args + " >/dev/null 2>&1";
+    std::string cmd = std::string("exec ") + INET_BINARY + " " + args + " >/dev/null 2>" +
+                      (err_file.empty() ? std::string("&1") : "'" + err_file + "'");
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   return pid;
 }
 
-void killAfterFrames(const std::string& args, const fs::path& cam_dir, size_t frames, int sig) {
-  pid_t pid = spawn(args);
+/// Sends `sig` once `frames` frames are written; returns the wait status.
+int killAfterFrames(const std::string& args, const fs::path& cam_dir, size_t frames, int sig,
+                    const std::string& err_file = "") {
+  pid_t pid = spawn(args, err_file);
   auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (filesIn(cam_dir, ".png") < frames && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   kill(pid, sig);
   int status = 0;
   waitpid(pid, &status, 0);
+  return status;
 }
 
 TEST(Generate, KilledRunResumesToIdenticalFolder) {
@@ -447,11 +452,36 @@ TEST(Generate, CtrlCStopsCleanlyAndResumes) {
   TempDir dir("gen_int");
   fs::path out = dir / "out";
   std::string args = kSmall + "--frames 30 --spp 16 --out " + out.string();
-  killAfterFrames(args, seqDir(out) / "cam0/data", 3, SIGINT);
+  const int status = killAfterFrames(args, seqDir(out) / "cam0/data", 3, SIGINT);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
   for (const auto& [name, bytes] : readTree(out))
     EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
   RunResult resumed = runInterinet(args);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(filesIn(seqDir(out) / "cam0/data", ".png"), 30u);
+}
+
+// A scheduler's SIGTERM (Slurm, Kubernetes: the warning before SIGKILL) stops the run between
+// frames with status 143 and says that a rerun resumes; the rerun finishes the sequence.
+TEST(Generate, SigtermStopsWith143AndARerunResumes) {
+  TempDir dir("gen_term");
+  fs::path out = dir / "out";
+  const std::string args = kSmall + "--frames 30 --spp 16 --out " + out.string();
+  const std::string err_file = (dir / "stderr.txt").string();
+  const int status = killAfterFrames(args, seqDir(out) / "cam0/data", 3, SIGTERM, err_file);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping";
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  const std::string err = readTree(dir.path())["stderr.txt"];
+  EXPECT_NE(err.find("stopped by SIGTERM after"), std::string::npos) << err;
+  EXPECT_NE(err.find("rerun the same command to resume"), std::string::npos) << err;
+  const size_t partial = filesIn(seqDir(out) / "cam0/data", ".png");
+  EXPECT_LT(partial, 30u) << "the run finished before the signal; make it longer";
+  for (const auto& [name, bytes] : readTree(out))
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+  RunResult resumed = runInterinet(args);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("resuming"), std::string::npos) << resumed.err;
   EXPECT_EQ(filesIn(seqDir(out) / "cam0/data", ".png"), 30u);
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <set>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "scene/nyu40.h"
 #include "scene_test_util.h"
@@ -392,6 +393,55 @@ TEST(AssimpImporter, SceneNetLayoutIsYUp) {
   }
   EXPECT_EQ(top, 6);
   EXPECT_EQ(bottom, 6);
+}
+
+// Issue 13 defect 6: an OBJ whose light is given only as Ka (older Cornell-box files). The
+// shared McGuire box with its `Ke 17 12 4` moved to `Ka 17 12 4`: the light still emits, and the
+// report says why; a Ka of at most 1 (Blender writes Ka 1 1 1 everywhere) stays a non-emitter.
+TEST(AssimpImporter, AmbientAboveOneWithoutKeIsEmission) {
+  const auto box = test::sharedDir() / "data" / "scenes" / "cornell_box_mcguire";
+  if (!std::filesystem::exists(box / "CornellBox-Original.obj"))
+    GTEST_SKIP() << "needs ../shared/data/scenes/cornell_box_mcguire (absent)";
+  std::string mtl = readTextFile((box / "CornellBox-Original.mtl").string());
+  // the light's block: its own Ka 0.78 goes, its Ke 17 12 4 becomes Ka 17 12 4
+  const size_t light = mtl.find("newmtl light");
+  ASSERT_NE(light, std::string::npos);
+  const size_t ka = mtl.find("Ka 0.78 0.78 0.78", light);
+  ASSERT_NE(ka, std::string::npos);
+  mtl.erase(ka, mtl.find('\n', ka) + 1 - ka);
+  const size_t ke = mtl.find("Ke 17 12 4", light);
+  ASSERT_NE(ke, std::string::npos);
+  mtl.replace(ke, 2, "Ka");
+  TempDir tmp;
+  tmp.write("CornellBox-Original.mtl", mtl);
+  const std::string obj =
+      tmp.write("box.obj", readTextFile((box / "CornellBox-Original.obj").string()));
+  ImportOptions opt;
+  opt.up = 'y';
+  ImportReport report;
+  const Scene s = importMeshScene(obj, opt, &report);
+  int emitters = 0;
+  for (const Object& o : s.objects) {
+    const Material& m = s.materials[o.material];
+    if (!m.isEmissive()) continue;
+    ++emitters;
+    EXPECT_EQ(o.name, "light");
+    EXPECT_EQ(m.emission, Vec3f(17, 12, 4));
+  }
+  EXPECT_EQ(emitters, 1);
+  ASSERT_EQ(report.ka_emission_materials.size(), 1u);
+  EXPECT_EQ(report.ka_emission_materials[0], "light");
+  const std::string line = report.summary(opt.default_category);
+  EXPECT_NE(line.find("Ka"), std::string::npos) << line;
+  EXPECT_NE(line.find("light"), std::string::npos) << line;
+  // Blender's Ka 1 1 1 with Kd and no Ke: not a light
+  tmp.write("b.mtl", "newmtl m\nKa 1 1 1\nKd 0.5 0.5 0.5\n");
+  const std::string b = tmp.write("b.obj", "mtllib b.mtl\no a\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                           "usemtl m\nf 1 2 3\n");
+  ImportReport rb;
+  const Scene sb = importMeshScene(b, ImportOptions{}, &rb);
+  EXPECT_FALSE(sb.materials[0].isEmissive());
+  EXPECT_TRUE(rb.ka_emission_materials.empty());
 }
 
 }  // namespace

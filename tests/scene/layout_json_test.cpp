@@ -558,7 +558,7 @@ std::vector<BadLayout> objectCases() {
          j["lights"][0] = preethamSky();
          j["lights"][0]["model"] = "hosek";
        }),
-       "lights[0].model", "unknown sky model 'hosek' (valid: uniform, preetham)"},
+       "lights[0].model", "unknown sky model 'hosek' (valid: uniform, preetham, envmap)"},
       {"sky_preetham_color", edited([](json& j) {
          j["lights"][0] = preethamSky();
          j["lights"][0]["color"] = {1, 1, 1};
