@@ -17,6 +17,7 @@
 #include "core/rng.h"
 #include "scene/label_map.h"
 #include "scene/nyu40.h"
+#include "scene/room_shell.h"
 
 namespace fs = std::filesystem;
 
@@ -432,6 +433,11 @@ std::string ImportReport::summary(const std::string& default_category) const {
     parts.push_back(fmt::format(
         "{} material(s) have a bump (height) map, which is not supported and was ignored",
         ignored_bump_maps));
+  if (split_shells > 0)
+    parts.push_back(fmt::format(
+        "{} object(s) labelled wall held the room's floor or ceiling too: split into floor and "
+        "ceiling objects of their own (docs/import.md)",
+        split_shells));
   if (!ka_emission_materials.empty()) {
     std::string names;
     for (size_t i = 0; i < ka_emission_materials.size() && i < 10; ++i)
@@ -488,11 +494,18 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   if (opt.up == 'a') {
     ImportOptions raw = opt;
     raw.up = 'z';
+    raw.split_shells = false;  // the floors and ceilings must not be guessed in a wrong frame
     ImportReport report;
     Scene s = importMeshScene(path, raw, &report);
     std::string why;
     raw.up = detectUpAxis(s, path, &why);
-    if (raw.up == 'y') s = importMeshScene(path, raw, &report);
+    raw.split_shells = opt.split_shells;
+    if (raw.up == 'y') {
+      s = importMeshScene(path, raw, &report);
+    } else if (opt.split_shells) {
+      report.split_shells = splitRoomShells(s);
+      report.objects = s.objects.size();
+    }
     report.up_reason = why;
     if (report_out) *report_out = std::move(report);
     return s;
@@ -512,6 +525,7 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   scene.name = fs::path(path).stem().string();
   if (scene.objects.empty())
     throw InputError(path, "", "the file contains no triangles (only lines or points?)");
+  if (opt.split_shells) builder.report.split_shells = splitRoomShells(scene);
   builder.report.objects = scene.objects.size();
   scene.validate(path);
   builder.report.up = opt.up;

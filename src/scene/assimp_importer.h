@@ -27,6 +27,7 @@ struct ImportOptions {
   char up = 'z';
   std::string label_map;                       ///< label map CSV path ("" = NYU40 names only)
   std::string default_category = "otherprop";  ///< NYU40 class for names nothing matches
+  bool split_shells = true;  ///< split floors and ceilings out of wall objects (room_shell.h)
 };
 
 /// What an import did that a user may want to know about, reported once (not per object).
@@ -42,6 +43,7 @@ struct ImportReport {
   /// Materials without Ke whose ambient colour Ka exceeds 1 (no reflectance can): taken as
   /// emitted radiance, the way older OBJ files (Cornell boxes) give their light.
   std::vector<std::string> ka_emission_materials;
+  size_t split_shells = 0;  ///< wall objects that held the floor or ceiling too (room_shell.h)
   char up = 'z';           ///< the up axis the scene was read with
   std::string up_reason;   ///< with up = 'a': why that axis (detectUpAxis)
 

@@ -104,7 +104,7 @@ const std::vector<LabelMap::Entry>& builtinEntries() {
         // SceneNet RGB-D's and 3D-FRONT's words for lights, shelves and loose furniture
         {"light", "lamp"},       {"lightbulb", "lamp"},         {"chandelier", "lamp"},
         {"lighting", "lamp"},    {"shelf", "shelves"},          {"pane", "window"},
-        {"drawer", "dresser"},   {"furniture", "otherfurniture"}};
+        {"drawer", "dresser"},   {"furniture", "otherfurniture"}, {"skeleton", "wall"}};
     for (const auto& [alias, name] : more) v.push_back({alias, *nyu40FromName(name), 0});
     return v;
   }();

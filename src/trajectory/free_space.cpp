@@ -15,6 +15,9 @@ namespace inet {
 
 namespace {
 
+/// Openings narrower than twice this close when a mesh scene's indoors are found (m).
+constexpr double kClosingRadius = 0.6;
+
 struct PointQueryData {
   const WorldTriangles* tris;
   Vec3 best;
@@ -161,8 +164,10 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
     // room for cameras at up to 2 m (and their clearance) above low scenes without a ceiling
     hi.z() = std::max(hi.z(), lo.z() + 2.8);
   }
-  lo -= Vec3::Constant(0.1);
-  hi += Vec3::Constant(0.1);
+  // a mesh scene's margin leaves room round the geometry for the closing of its openings below
+  const double margin = scene.rooms.empty() ? kClosingRadius + 0.2 : 0.1;
+  lo -= Vec3::Constant(margin);
+  hi += Vec3::Constant(margin);
   OccupancyGrid grid = voxelizeTriangles(tris, lo, hi, opt.voxel, opt.max_voxels);
   voxel_ = grid.voxel;
   nx_ = grid.nx;
@@ -178,20 +183,24 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
   const double none = 1e20;
   std::vector<double> sq(count);
   for (size_t id = 0; id < count; ++id) sq[id] = occupied[id] ? 0.0 : none;
-  auto pass = [&](int n, int lines_a, int lines_b, auto at) {
-    tbb::parallel_for(0, lines_b, [&](int b) {
-      std::vector<double> f(n), d(n), z(n + 1);
-      std::vector<int> v(n);
-      for (int a = 0; a < lines_a; ++a) {
-        for (int q = 0; q < n; ++q) f[q] = sq[at(q, a, b)];
-        edt1d(f.data(), n, d.data(), v.data(), z.data());
-        for (int q = 0; q < n; ++q) sq[at(q, a, b)] = d[q];
-      }
-    });
+  // squared distances (in voxels) to the voxels where `field` is 0, in place
+  auto transform = [&](std::vector<double>& field) {
+    auto pass = [&](int n, int lines_a, int lines_b, auto at) {
+      tbb::parallel_for(0, lines_b, [&](int b) {
+        std::vector<double> f(n), d(n), z(n + 1);
+        std::vector<int> v(n);
+        for (int a = 0; a < lines_a; ++a) {
+          for (int q = 0; q < n; ++q) f[q] = field[at(q, a, b)];
+          edt1d(f.data(), n, d.data(), v.data(), z.data());
+          for (int q = 0; q < n; ++q) field[at(q, a, b)] = d[q];
+        }
+      });
+    };
+    pass(nx_, ny_, nz_, [&](int q, int a, int b) { return index(q, a, b); });
+    pass(ny_, nx_, nz_, [&](int q, int a, int b) { return index(a, q, b); });
+    pass(nz_, nx_, ny_, [&](int q, int a, int b) { return index(a, b, q); });
   };
-  pass(nx_, ny_, nz_, [&](int q, int a, int b) { return index(q, a, b); });
-  pass(ny_, nx_, nz_, [&](int q, int a, int b) { return index(a, q, b); });
-  pass(nz_, nx_, ny_, [&](int q, int a, int b) { return index(a, b, q); });
+  transform(sq);
 
   // ---- indoors ----
   std::vector<uint8_t> indoor(count, 0);
@@ -256,12 +265,17 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
       }
     });
   } else {
-    // flood the free voxels from the grid's border: what the flood cannot reach is enclosed
+    // Flood from the grid's border: what the flood cannot reach is enclosed. The flood goes
+    // only where the geometry is more than kClosingRadius away, and what it reached is then
+    // widened by that radius: a morphological closing, so that a doorway or a window hole
+    // (up to 2 x 0.6 m wide) does not let the outside in, while the outside still reaches
+    // every outer face of the walls.
+    const double r2 = std::pow(kClosingRadius / voxel_, 2);
     std::vector<uint8_t> outside(count, 0);
     std::vector<size_t> stack;
     auto seed = [&](int i, int j, int k) {
       size_t id = index(i, j, k);
-      if (!occupied[id] && !outside[id]) {
+      if (sq[id] > r2 && !outside[id]) {
         outside[id] = 1;
         stack.push_back(id);
       }
@@ -283,16 +297,21 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
       if (k > 0) seed(i, j, k - 1);
       if (k + 1 < nz_) seed(i, j, k + 1);
     }
-    for (size_t id = 0; id < count; ++id) indoor[id] = !outside[id];
+    std::vector<double> to_outside(count);
+    for (size_t id = 0; id < count; ++id) to_outside[id] = outside[id] ? 0.0 : none;
+    transform(to_outside);
+    for (size_t id = 0; id < count; ++id) indoor[id] = to_outside[id] > r2;
   }
-  // an open scene (a room with holes for windows or missing walls, a room without a ceiling,
-  // furniture on a plate) encloses no room for a camera (1 m^3 of it: a small toilet has more).
-  // Then what is roofed counts: the free voxels with geometry both above and below them in
-  // their column (SceneNet's kitchen2 has three walls, but its floor and ceiling); with less
-  // than 1 m^3 of room there either (no ceiling at all), everything in the box counts. Either
-  // way, the insides of closed objects (under 1 m^3) do not.
-  if (keepBigRegions(true, 2.0) < 1.0 && scene.rooms.empty()) {
-    open_ = true;
+  // An open scene (a room with holes for windows or missing walls, a room without a ceiling,
+  // furniture on a plate) encloses no room for a camera but perhaps a cupboard's inside. Then
+  // what is roofed counts: the free voxels with geometry both above and below them in their
+  // column (SceneNet's kitchen2 has three walls, but its floor and ceiling). A scene is open
+  // when its enclosed room is less than 1 m^3 or a quarter of its roofed room; with less than
+  // 1 m^3 of roofed room too (no ceiling at all) and nothing enclosed, everything in the box
+  // counts. Either way the insides of closed objects (under 1 m^3) do not.
+  const double enclosed_room = keepBigRegions(true, 2.0);
+  if (scene.rooms.empty()) {
+    const std::vector<uint8_t> enclosed = indoor;
     for (int j = 0; j < ny_; ++j)
       for (int i = 0; i < nx_; ++i) {
         int top = -1, bottom = nz_;
@@ -300,9 +319,20 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
           if (occupied[index(i, j, k)]) top = k, bottom = std::min(bottom, k);
         for (int k = 0; k < nz_; ++k) indoor[index(i, j, k)] = k > bottom && k < top;
       }
-    if (keepBigRegions(true, 2.0) < 1.0) {
-      std::fill(indoor.begin(), indoor.end(), 1);
-      keepBigRegions(false, 1.0);
+    const double roofed_room = keepBigRegions(true, 2.0);
+    if (enclosed_room >= 1.0 && enclosed_room >= 0.25 * roofed_room) {
+      indoor = enclosed;
+    } else if (roofed_room >= 1.0) {
+      open_ = true;
+    } else {
+      // nothing roomy anywhere: a tight but closed scene stays what it encloses (so that the
+      // error says it is too tight), an open one counts whole
+      indoor = enclosed;
+      if (keepBigRegions(false, 1.0) < 1.0) {
+        open_ = true;
+        std::fill(indoor.begin(), indoor.end(), 1);
+        keepBigRegions(false, 1.0);
+      }
     }
   }
 
@@ -318,13 +348,20 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
         const int border = std::min({i, j, k, nx_ - 1 - i, ny_ - 1 - j, nz_ - 1 - k});
         dist_[id] = static_cast<float>(std::min({far, std::sqrt(sq[id]) * voxel_, border * voxel_}));
       }
+  // the middle of what an indoor camera sees of the walls: occupied voxels with an indoor free
+  // neighbour beside them (not above or below: floors and ceilings run on under a missing wall)
   Vec3 sum = Vec3::Zero();
-  size_t free = 0;
+  size_t walls = 0;
   for (int k = 0; k < nz_; ++k)
-    for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i)
-        if (dist_[index(i, j, k)] > 0.f) sum += origin_ + voxel_ * Vec3(i, j, k), ++free;
-  if (free > 0) indoor_centre_ = sum / static_cast<double>(free);
+    for (int j = 1; j + 1 < ny_; ++j)
+      for (int i = 1; i + 1 < nx_; ++i) {
+        if (!occupied[index(i, j, k)]) continue;
+        const bool faces_indoors =
+            dist_[index(i - 1, j, k)] > 0.f || dist_[index(i + 1, j, k)] > 0.f ||
+            dist_[index(i, j - 1, k)] > 0.f || dist_[index(i, j + 1, k)] > 0.f;
+        if (faces_indoors) sum += origin_ + voxel_ * Vec3(i, j, k), ++walls;
+      }
+  if (walls > 0) indoor_centre_ = sum / static_cast<double>(walls);
   if (!scene.rooms.empty())
     findRoomFloors(scene);
   else
@@ -361,6 +398,7 @@ void FreeSpace::findRoomFloors(const Scene& scene) {
 
 void FreeSpace::findMeshFloors(const std::vector<uint8_t>& occupied,
                                const std::vector<uint8_t>& indoor) {
+  floors_from_geometry_ = true;
   // every indoor surface top (k of the free voxel on it); those with at least 1 m of free space
   // above them give the area per height from which the levels are found (floor under a desk
   // is a floor surface of its column, but only open floor says where the floors are)
@@ -422,6 +460,15 @@ double FreeSpace::floorBelow(const Vec3& p) const {
   for (uint32_t f = floor_start_[c]; f < floor_start_[c + 1]; ++f)
     if (column_floors_[f] <= p.z() + 0.05) best = column_floors_[f];
   return best;
+}
+
+double FreeSpace::ceilingAbove(const Vec3& p) const {
+  const Vec3 g = (p - origin_) / voxel_;
+  const int i = static_cast<int>(std::lround(g.x())), j = static_cast<int>(std::lround(g.y()));
+  if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return std::numeric_limits<double>::quiet_NaN();
+  for (int k = std::max(0, static_cast<int>(std::lround(g.z()))); k < nz_; ++k)
+    if (dist_[index(i, j, k)] == 0.f) return origin_.z() + voxel_ * k;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 bool FreeSpace::isIndoors(const Vec3& p) const {

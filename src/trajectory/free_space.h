@@ -101,6 +101,10 @@ class FreeSpace {
   /// z of the floor under p (the highest floor surface of p's column at most 5 cm above p), or
   /// NaN when p's column has none.
   double floorBelow(const Vec3& p) const;
+  /// z of the first geometry above p in its column (a voxel's precision), or NaN.
+  double ceilingAbove(const Vec3& p) const;
+  /// Were floors found in the grid (a mesh scene) rather than taken from rooms?
+  bool floorsFromGeometry() const { return floors_from_geometry_; }
   /// The floor heights found (rooms: their distinct floor_z), lowest first.
   const std::vector<double>& floorLevels() const { return floor_levels_; }
   /// Does the scene enclose no room for a camera (a mesh scene with missing walls or holes)?
@@ -112,7 +116,7 @@ class FreeSpace {
   /// Does the ray from p along dir meet geometry within max_range (m), rather than leave the
   /// grid or the indoors? (Sphere tracing on the grid: steps of the voxel distance field.)
   bool seesGeometry(const Vec3& p, const Vec3& dir, double max_range) const;
-  /// The centre of the indoor free voxels (open scenes: where a view should turn back to).
+  /// The centre of the walls seen from indoors (open scenes: where a view should turn to).
   const Vec3& indoorCentre() const { return indoor_centre_; }
   /// Indoor free volume (m^3), and the part of it at least `clearance` from the geometry: what
   /// an error message can say about a scene with no room for a camera.
@@ -135,6 +139,7 @@ class FreeSpace {
   std::vector<float> column_floors_;
   std::vector<double> floor_levels_;
   bool open_ = false;
+  bool floors_from_geometry_ = false;
   Vec3 indoor_centre_ = Vec3::Zero();
 
   void findRoomFloors(const Scene& scene);

@@ -130,6 +130,23 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   if (starts.empty()) starts = space.freeCentres(clear, opt.min_height, opt.max_height);
   if (starts.empty())
     throw InputError(source, "free space", noStartMessage(space, opt, clear));
+  // an open scene: start where geometry surrounds the camera (the room, not the eaves outside
+  // its walls or the gap where a wall is missing): the candidates that see geometry in at
+  // least 10 of 16 horizontal directions (or in the most, if none does); of those, the
+  // roomiest below (a cupboard's inside sees geometry all round too, but close)
+  if (space.isOpen()) {
+    std::vector<int> seen(starts.size(), 0);
+    for (size_t i = 0; i < starts.size(); ++i)
+      for (int h = 0; h < 16; ++h) {
+        const double a = 2 * M_PI * h / 16;
+        seen[i] += space.seesGeometry(starts[i].centre, Vec3(std::cos(a), std::sin(a), 0), 15.0);
+      }
+    const int need = std::min(10, *std::max_element(seen.begin(), seen.end()));
+    std::vector<FreeSpace::FreeVoxel> enclosed;
+    for (size_t i = 0; i < starts.size(); ++i)
+      if (seen[i] >= need) enclosed.push_back(starts[i]);
+    starts = std::move(enclosed);
+  }
   // start in open space: among the quarter of the candidates farthest from any geometry (the
   // middles of the larger rooms), so a trajectory does not open in a closet facing a wall; the
   // rest keep their grid order, so the draw below is deterministic
@@ -148,7 +165,17 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   s.cam = start.centre;
   // heights are kept above the start's floor: its storey (z = 0 in procedural layouts)
   const double floor_z = start.floor_z;
-  const double h_lo = floor_z + opt.min_height, h_hi = floor_z + opt.max_height;
+  // In a low space of an imported scene (a 2 m Cornell box) the heights shrink with the room
+  // (below 2.6 m of headroom) and the look-at point stays 0.3 m under the ceiling, so the view
+  // takes in the floor and what stands on it rather than the ceiling lamp. Procedural rooms
+  // are 2.5 m or higher and keep the plain limits.
+  double scale = 1.0, look_top = floor_z + 2.5;
+  if (space.floorsFromGeometry())
+    if (const double c = space.ceilingAbove(start.centre); std::isfinite(c)) {
+      scale = std::clamp((c - floor_z) / 2.6, 0.5, 1.0);
+      look_top = std::min(look_top, c - 0.3);
+    }
+  const double h_lo = floor_z + opt.min_height * scale, h_hi = floor_z + opt.max_height * scale;
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
   // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
@@ -310,15 +337,19 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
       // hand-held: a firm spring keeps the look-at point 0.3 m below the camera or lower, so
       // the hard limit below is a last resort (a clamp stops the view's vertical turns dead)
       const bool below = opt.type == MotionType::HandHeld;
-      const double z_hi = below ? s.cam.z() - 0.3 : floor_z + 2.5;
+      const double z_hi = below ? s.cam.z() - 0.3 : look_top;
       if (s.target.z() > z_hi) at.z() -= (below ? 30.0 : 6.0) * (s.target.z() - z_hi);
       if (s.target.z() < floor_z + 0.3) at.z() += 6.0 * (floor_z + 0.3 - s.target.z());
       // an open scene: a view that would stare past a missing wall into the void is turned
       // back towards the middle of the scene
-      if (space.isOpen() && !space.seesGeometry(s.cam, s.target - s.cam, 15.0)) {
+      // and, weakly, every view of an open scene is drawn to its middle, where its content is
+      // (a Cornell box seen from inside: the boxes, not a wall at arm's length)
+      if (space.isOpen()) {
+        // towards the middle, and to 0.2 m under the camera (a view a little down, as a
+        // hand-held camera looks at a room)
         Vec3 back = space.indoorCentre() - s.target;
-        back.z() = 0.0;
-        at += 6.0 * back;
+        back.z() = s.cam.z() - 0.2 - s.target.z();
+        at += (space.seesGeometry(s.cam, s.target - s.cam, 15.0) ? 1.0 : 6.0) * back;
       }
       v_target += at * kSimDt;
       // the look-at body is carried along with the camera in part (kCarry), so the view's turn

@@ -365,7 +365,12 @@ TEST(AssimpImporter, SceneNetLayoutIsYUp) {
   opt.label_map = tmp.write("scenenet.csv", "painting,picture\nplate,otherprop\n");
   ImportReport report;
   Scene s = importMeshScene(bedroom.string(), opt, &report);
-  EXPECT_EQ(s.objects.size(), 15u);
+  // 15 objects in the file; the floor and ceiling faces of wall.002 become objects of their own
+  // (room_shell.h), with no triangle lost
+  EXPECT_EQ(s.objects.size(), 17u);
+  EXPECT_EQ(report.split_shells, 1u);
+  EXPECT_EQ(s.objects[findObject(s, "wall.002_floor")].nyu40, id("floor"));
+  EXPECT_EQ(s.objects[findObject(s, "wall.002_ceiling")].nyu40, id("ceiling"));
   EXPECT_EQ(s.triangleCount(), 16968u);
   EXPECT_EQ(report.unmatched_objects, 0u) << report.summary(opt.default_category);
   EXPECT_EQ(s.objects[findObject(s, "painting.004")].nyu40, id("picture"));
