@@ -46,7 +46,8 @@ void registerImu(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "imu",
       "Simulate an IMU along a camera trajectory (TUM, EuRoC, ... auto-detected): cubic "
-      "B-spline (R3 x cumulative SO(3)) through the poses, gyro and accelerometer at any rate, "
+      "B-spline (R3 x cumulative SO(3)) fitted to the poses by least squares (exact for constant "
+      "acceleration and turn rate, docs/sensors.md), gyro and accelerometer at any rate, "
       "Kalibr noise model; writes OUT/imu0/{data.csv (EuRoC), data_noise_free.csv, biases.csv, "
       "sensor.yaml}");
   auto a = std::make_shared<ImuArgs>();

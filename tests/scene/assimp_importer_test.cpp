@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "scene/nyu40.h"
@@ -447,6 +449,50 @@ TEST(AssimpImporter, AmbientAboveOneWithoutKeIsEmission) {
   const Scene sb = importMeshScene(b, ImportOptions{}, &rb);
   EXPECT_FALSE(sb.materials[0].isEmissive());
   EXPECT_TRUE(rb.ka_emission_materials.empty());
+}
+
+// --up auto: glTF is Y up; otherwise where the floor and ceiling objects face, or failing labels,
+// where most triangle area faces. Each file is also checked turned to the other axis.
+TEST(AssimpImporter, UpAxisIsDetected) {
+  ImportOptions opt;
+  opt.up = 'a';
+  ImportReport report;
+  importMeshScene(fixture("instanced.gltf").string(), opt, &report);
+  EXPECT_EQ(report.up, 'y');
+  EXPECT_NE(report.up_reason.find("glTF"), std::string::npos) << report.up_reason;
+  importMeshScene(fixture("two_parts.obj").string(), opt, &report);
+  EXPECT_EQ(report.up, 'z') << report.up_reason;
+
+  // a 6 x 4 m room, 2.6 m high, written Y up (y is height) and Z up, with and without labels
+  auto roomObj = [](bool y_up, bool labelled) {
+    auto v = [&](double x, double d, double h) {
+      return y_up ? fmt::format("v {} {} {}\n", x, h, -d) : fmt::format("v {} {} {}\n", x, d, h);
+    };
+    std::string s;
+    const char* names[3] = {labelled ? "floor" : "part_a", labelled ? "ceiling" : "part_b",
+                            labelled ? "wall" : "part_c"};
+    s += std::string("o ") + names[0] + "\n" + v(0, 0, 0) + v(6, 0, 0) + v(6, 4, 0) + v(0, 4, 0) +
+         "f 1 2 3\nf 1 3 4\n";
+    s += std::string("o ") + names[1] + "\n" + v(0, 0, 2.6) + v(6, 0, 2.6) + v(6, 4, 2.6) +
+         v(0, 4, 2.6) + "f 5 7 6\nf 5 8 7\n";
+    s += std::string("o ") + names[2] + "\n" + v(0, 0, 0) + v(6, 0, 0) + v(6, 0, 2.6) +
+         v(0, 0, 2.6) + "f 9 10 11\nf 9 11 12\n";
+    return s;
+  };
+  TempDir tmp;
+  for (bool labelled : {true, false})
+    for (bool y_up : {true, false}) {
+      SCOPED_TRACE(fmt::format("labelled {} y_up {}", labelled, y_up));
+      const std::string path = tmp.write(fmt::format("room_{}_{}.obj", labelled, y_up),
+                                         roomObj(y_up, labelled));
+      const Scene s = importMeshScene(path, opt, &report);
+      EXPECT_EQ(report.up, y_up ? 'y' : 'z') << report.up_reason;
+      EXPECT_NE(report.up_reason.find(labelled ? "floor and ceiling" : "triangles"),
+                std::string::npos)
+          << report.up_reason;
+      auto [lo, hi] = s.bounds();
+      EXPECT_NEAR(hi.z() - lo.z(), 2.6, 1e-5);  // the height is z after the import
+    }
 }
 
 }  // namespace
