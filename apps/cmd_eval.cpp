@@ -39,7 +39,7 @@ struct EvalArgs {
     cmd.add_option("GT", gt, "ground-truth trajectory file")->required();
     cmd.add_option("EST", est, "estimated trajectory file")->required();
     cmd.add_option("--gt-format", gt_format,
-                   "tum, euroc, icl, slambench, scenenet or scenenet_v1 (default: detected)");
+                   "tum, euroc, icl, slambench, scenenet, scenenet_v1 or kitti (default: detected)");
     cmd.add_option("--est-format", est_format, "as --gt-format, for EST");
     cmd.add_option("--align", align,
                    std::string("none, se3 (rigid) or sim3 (rigid + scale, for monocular "

@@ -212,7 +212,7 @@ void registerTrajectory(CLI::App& app) {
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");
   auto s = std::make_shared<std::pair<std::string, std::string>>();
   auto scene = std::make_shared<SceneArgs>();
-  show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet, scenenet_v1)")
+  show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet, scenenet_v1, kitti)")
       ->required();
   scene->addTo(*show);
   show->add_option("--out", s->second, "PNG to write")->required();

@@ -51,15 +51,17 @@ void runConvert(const ConvertArgs& a) {
   const TrajectoryFormat in_fmt =
       a.from.empty() ? detectTrajectoryFormat(a.in, text) : parseTrajectoryFormat(a.from, "--from");
   const auto timeless = [](TrajectoryFormat f) {
-    return f == TrajectoryFormat::Icl || f == TrajectoryFormat::SceneNetV1;
+    return f == TrajectoryFormat::Icl || f == TrajectoryFormat::SceneNetV1 ||
+           f == TrajectoryFormat::Kitti;
   };
   if (*a.fps_opt && !timeless(in_fmt) && !timeless(to))
     throw InputError("", "--fps",
-                     fmt::format("only used by icl and scenenet_v1 (frame numbers, pose lists), "
+                     fmt::format("only used by icl, scenenet_v1 and kitti (frame numbers, pose "
+                                 "lists), "
                                  "but this converts {} to {}",
                                  trajectoryFormatName(in_fmt), trajectoryFormatName(to)));
   TrajectoryFormatOptions opt = a.format;
-  if (*a.fps_opt) opt.pose_list_fps = opt.icl_fps;
+  if (*a.fps_opt) opt.pose_list_fps = opt.kitti_fps = opt.icl_fps;
   TrajectoryReadReport report;
   Trajectory traj = parseTrajectory(text, a.in, in_fmt, opt, &report);
   warnTrajectoryRead(a.in, report);
@@ -80,7 +82,7 @@ void addTrajectoryConvertCommand(CLI::App* trajectory_cmd) {
       "Convert a camera trajectory between formats: tum (groundtruth.txt), euroc "
       "(state_groundtruth_estimate0/data.csv), icl (ICL-NUIM .gt.freiburg), slambench "
       "(SLAMBench 2 groundtruth.txt), scenenet (SceneNet RGB-D camera log), scenenet_v1 "
-      "(SceneNet v1 3x4 pose blocks). Axes are converted "
+      "(SceneNet v1 3x4 pose blocks), kitti (KITTI odometry poses). Axes are converted "
       "to each format's convention");
   auto a = std::make_shared<ConvertArgs>();
   cmd->add_option("IN", a->in, "trajectory file to read")->required();
@@ -90,8 +92,9 @@ void addTrajectoryConvertCommand(CLI::App* trajectory_cmd) {
                   "output format; default: from OUT's extension (.txt tum, .csv euroc, "
                   ".freiburg icl, .log scenenet)");
   a->fps_opt = cmd->add_option("--fps", a->format.icl_fps,
-                               "icl and scenenet_v1 only: frame rate linking frame numbers "
-                               "and time (default 30, ICL-NUIM's; scenenet_v1: 25)");
+                               "icl, scenenet_v1 and kitti only: frame rate linking frame "
+                               "numbers and time (default 30, ICL-NUIM's; scenenet_v1: 25; "
+                               "kitti: 10)");
   a->baseline_opt = cmd->add_option(
       "--baseline", a->baseline_m,
       "write the right camera of a stereo rig: the pose shifted this many metres along the "

@@ -27,7 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using inet::TrajectoryFormat;
   for (TrajectoryFormat f : {TrajectoryFormat::Tum, TrajectoryFormat::Euroc, TrajectoryFormat::Icl,
                              TrajectoryFormat::SlamBench, TrajectoryFormat::SceneNet,
-                             TrajectoryFormat::SceneNetV1}) {
+                             TrajectoryFormat::SceneNetV1, TrajectoryFormat::Kitti}) {
     try {
       inet::TrajectoryReadReport report;
       check(inet::parseTrajectory(text, "fuzz.txt", f, {}, &report));

@@ -115,6 +115,13 @@ std::vector<std::string> splitComma(const std::string& line) {
   return out;
 }
 
+/// splitComma without one empty field after a trailing comma (VINS ends its rows with ',').
+std::vector<std::string> splitCsvRow(const std::string& line) {
+  std::vector<std::string> tok = splitComma(line);
+  if (tok.size() > 1 && tok.back().empty()) tok.pop_back();
+  return tok;
+}
+
 /// A finite decimal number (optional sign, fraction, exponent). No hex, inf or nan.
 bool parseNumber(const std::string& s, double& out) {
   const char* b = s.data();
@@ -212,14 +219,26 @@ Trajectory parseTum(const std::string& text, const std::string& path,
   forEachDataLine(text, true, out.report(), [&](std::string line, int line_no) {
     std::replace(line.begin(), line.end(), ',', ' ');
     const std::vector<std::string> tok = splitWhitespace(line);
-    if (tok.size() != 8)
+    // 20: OpenVINS' ov_eval writes the pose and its 12 covariance values
+    if (tok.size() != 8 && tok.size() != 20)
       throw InputError(
           path, lineRef(line_no),
-          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}", tok.size()));
+          fmt::format("expected 8 fields 'timestamp tx ty tz qx qy qz qw', found {}{}", tok.size(),
+                      tok.size() == 12 ? " (12 numbers a line: KITTI poses? --format kitti)" : ""));
+    if (tok.size() > 8) {
+      double cov[12];
+      parseNumbers(tok, 8, 12, cov, path, line_no);
+      out.report()->ignored_columns = 12;
+    }
     TimeNs t_ns = 0;
-    if (!parseSecondsToNs(tok[0], t_ns))
+    const size_t digits = std::min(tok[0].find('.'), tok[0].size());
+    if (digits >= 16 && isDigits(tok[0].substr(0, digits)) &&
+        parseScaledDecimal(tok[0], 0, false, t_ns)) {
+      out.report()->nanosecond_stamps = true;
+    } else if (!parseSecondsToNs(tok[0], t_ns)) {
       throw InputError(path, lineRef(line_no),
                        "timestamp '" + tok[0] + "' is not a number of seconds");
+    }
     double v[7];
     parseNumbers(tok, 1, 7, v, path, line_no);
     out.add(t_ns, {unitQuat(v[6], v[3], v[4], v[5], path, line_no), Vec3(v[0], v[1], v[2])},
@@ -233,11 +252,12 @@ Trajectory parseEuroc(const std::string& text, const std::string& path,
   PoseCollector out(path, report);
   size_t columns = 0;
   forEachDataLine(text, true, out.report(), [&](const std::string& line, int line_no) {
-    const std::vector<std::string> tok = splitComma(line);
-    if (tok.size() != 8 && tok.size() != 17)
+    const std::vector<std::string> tok = splitCsvRow(line);
+    // 11: VINS-Mono/Fusion write the pose and the velocity
+    if (tok.size() != 8 && tok.size() != 11 && tok.size() != 17)
       throw InputError(path, lineRef(line_no),
-                       fmt::format("expected 8 or 17 comma-separated columns "
-                                   "'t_ns,px,py,pz,qw,qx,qy,qz[,v,bw,ba]', found {}",
+                       fmt::format("expected 8, 11 or 17 comma-separated columns "
+                                   "'t_ns,px,py,pz,qw,qx,qy,qz[,v[,bw,ba]]', found {}",
                                    tok.size()));
     if (columns == 0) columns = tok.size();
     if (tok.size() != columns)
@@ -249,6 +269,7 @@ Trajectory parseEuroc(const std::string& text, const std::string& path,
                        "timestamp '" + tok[0] + "' is not an integer number of nanoseconds");
     double v[16];
     parseNumbers(tok, 1, tok.size() - 1, v, path, line_no);
+    if (tok.size() == 11) out.report()->ignored_columns = 3;  // VINS' velocity
     out.add(t_ns, {unitQuat(v[3], v[4], v[5], v[6], path, line_no), Vec3(v[0], v[1], v[2])},
             line_no);
   });
@@ -472,6 +493,62 @@ std::string formatSceneNet(const Trajectory& traj) {
   return out;
 }
 
+/// KITTI odometry poses (`poses/XX.txt`, evo's `kitti` files): one camera-to-world 3x4 [R|t]
+/// row-major per line, no time (pose k at k / fps, 10 Hz as KITTI's). The camera is OpenCV's
+/// (x right, y down, z forward) and the world is the first camera's frame, so its up is -y:
+/// ours is that frame turned by Rx(-90 deg), p_w = (x, z, -y), and the camera axes stay.
+Mat3 kittiWorldToOurs() {
+  Mat3 a;
+  a << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  return a;
+}
+
+Trajectory parseKitti(const std::string& text, const std::string& path, double fps,
+                      TrajectoryReadReport* report) {
+  PoseCollector out(path, report);
+  int64_t k = 0;
+  forEachDataLine(text, false, out.report(), [&](const std::string& line, int line_no) {
+    const std::vector<std::string> tok = splitWhitespace(line);
+    if (tok.size() != 12)
+      throw InputError(path, lineRef(line_no),
+                       fmt::format("expected the 12 numbers of a 3x4 [R|t] pose, found {}",
+                                   tok.size()));
+    double v[12];
+    parseNumbers(tok, 0, 12, v, path, line_no);
+    Mat3 R;
+    R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-3 || R.determinant() < 0)
+      throw InputError(path, lineRef(line_no),
+                       "the 3x3 part is not a rotation (orthonormal, det +1)");
+    const Mat3 A = kittiWorldToOurs();
+    out.add(frameToNs(k++, fps), {Quat(A * R).normalized(), A * Vec3(v[3], v[7], v[11])},
+            line_no);
+  });
+  return out.finish();
+}
+
+std::string formatKitti(const Trajectory& traj, double fps) {
+  std::string out;
+  const Mat3 At = kittiWorldToOurs().transpose();
+  const double period_ns = 1e9 / fps;
+  for (size_t k = 0; k < traj.size(); ++k) {
+    if (std::abs(static_cast<double>(frameToNs(static_cast<int64_t>(k), fps) -
+                                     traj.poses[k].t_ns)) > 0.01 * period_ns)
+      throw InputError("", "--fps",
+                       fmt::format("pose {} at {} s is not frame {} of a {} fps sequence starting "
+                                   "at 0: kitti files hold no times; resample the trajectory or "
+                                   "give its frame rate",
+                                   k, nsToSecondsString(traj.poses[k].t_ns), k, fps));
+    const Mat3 R = At * traj.poses[k].T_world_camera.rotation();
+    const Vec3 t = At * traj.poses[k].T_world_camera.t;
+    out += fmt::format("{:.12e} {:.12e} {:.12e} {:.12e} {:.12e} {:.12e} {:.12e} {:.12e} {:.12e} "
+                       "{:.12e} {:.12e} {:.12e}\n",
+                       R(0, 0), R(0, 1), R(0, 2), t.x(), R(1, 0), R(1, 1), R(1, 2), t.y(), R(2, 0),
+                       R(2, 1), R(2, 2), t.z());
+  }
+  return out;
+}
+
 /// 3x4 [R|t] blocks (parseSceneNetV1 has the frames), times on the fps grid.
 std::string formatSceneNetV1(const Trajectory& traj, double fps) {
   std::string out;
@@ -507,7 +584,8 @@ constexpr FormatName kFormats[] = {{TrajectoryFormat::Tum, "tum"},
                                    {TrajectoryFormat::Icl, "icl"},
                                    {TrajectoryFormat::SlamBench, "slambench"},
                                    {TrajectoryFormat::SceneNet, "scenenet"},
-                                   {TrajectoryFormat::SceneNetV1, "scenenet_v1"}};
+                                   {TrajectoryFormat::SceneNetV1, "scenenet_v1"},
+                                   {TrajectoryFormat::Kitti, "kitti"}};
 
 }  // namespace
 
@@ -553,23 +631,25 @@ TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::stri
     if (by_extension) return *by_extension;
     throw InputError(path, lineRef(first_no),
                      "cannot tell the trajectory format (" + why +
-                         "); name it (tum, euroc, icl, slambench, scenenet, scenenet_v1)");
+                         "); name it (tum, euroc, icl, slambench, scenenet, scenenet_v1, kitti)");
   };
   const std::vector<std::string> tok = splitWhitespace(first);
   if (tok[0].rfind("time:", 0) == 0 || tok[0].rfind("instance:", 0) == 0)
     return TrajectoryFormat::SceneNet;
   if (first.find(',') != std::string::npos) {
-    const std::vector<std::string> cols = splitComma(first);
+    const std::vector<std::string> cols = splitCsvRow(first);
     // EuRoC stamps are whole nanoseconds: digits, or numpy's '%.18e' of them (a whole number
     // of at least 1e12 ns; as TUM seconds that would be the year 33,000)
     int64_t ns = 0;
     const bool ns_stamp = isDigits(cols[0]) || (parseCount(cols[0], ns) && ns >= 1'000'000'000'000);
-    if (cols.size() == 17 || (cols.size() == 8 && ns_stamp)) return TrajectoryFormat::Euroc;
+    if (cols.size() == 17 || ((cols.size() == 8 || cols.size() == 11) && ns_stamp))
+      return TrajectoryFormat::Euroc;
     if (cols.size() == 8) return TrajectoryFormat::Tum;  // TUM tools also write commas
     return cannot(fmt::format("{} comma-separated columns", cols.size()));
   }
   if (tok.size() == 4) return TrajectoryFormat::SceneNetV1;  // rows of 3x4 [R|t] blocks
-  if (tok.size() != 8) return cannot(fmt::format("{} columns", tok.size()));
+  if (tok.size() == 12) return TrajectoryFormat::Kitti;      // a 3x4 [R|t] a line
+  if (tok.size() != 8 && tok.size() != 20) return cannot(fmt::format("{} columns", tok.size()));
   // ICL-NUIM's frame numbers look like whole-second TUM stamps: only its extension tells
   if (by_extension == TrajectoryFormat::Icl) return TrajectoryFormat::Icl;
   return TrajectoryFormat::Tum;
@@ -595,6 +675,8 @@ Trajectory parseTrajectory(const std::string& text, const std::string& path, Tra
       return parseSceneNet(text, path, report);
     case TrajectoryFormat::SceneNetV1:
       return parseSceneNetV1(text, path, checkFps(opt.pose_list_fps), report);
+    case TrajectoryFormat::Kitti:
+      return parseKitti(text, path, checkFps(opt.kitti_fps), report);
   }
   INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
 }
@@ -628,6 +710,10 @@ std::string formatTrajectory(const Trajectory& traj, TrajectoryFormat fmt,
       if (!(opt.pose_list_fps > 0) || !std::isfinite(opt.pose_list_fps))
         throw InputError("", "--fps", "the frame rate must be > 0");
       return formatSceneNetV1(traj, opt.pose_list_fps);
+    case TrajectoryFormat::Kitti:
+      if (!(opt.kitti_fps > 0) || !std::isfinite(opt.kitti_fps))
+        throw InputError("", "--fps", "the frame rate must be > 0");
+      return formatKitti(traj, opt.kitti_fps);
   }
   INET_CHECK_MSG(false, "unhandled TrajectoryFormat");
 }

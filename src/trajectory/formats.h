@@ -23,6 +23,12 @@
 // scenenet_v1  SceneNet v1's `*_trajectory_random_poses_SE3_3x4.txt`: 3x4 camera-to-world
 //            [R|t] blocks in the scene's Y-up frame with an OpenGL camera, no times (pose k at
 //            k / pose_list_fps); derivation at parseSceneNetV1 in formats.cpp.
+// kitti      KITTI odometry poses: 12 numbers a line, camera-to-world [R|t] row-major in the
+//            first camera's frame (OpenCV camera, y down), no times (pose k at k / kitti_fps).
+//            Derivation at parseKitti in formats.cpp.
+// tum        also reads OpenVINS' ov_eval files (8 pose fields + 12 covariance values) and
+//            ORB-SLAM3's EuRoC output (TUM layout with nanosecond stamps); euroc also reads
+//            VINS-Mono/Fusion's rows (pose, velocity, trailing comma).
 // scenenet   SceneNet RGB-D / OppositeRenderer camera log, the text that
 //            pySceneNetRGBD/logs_to_protobuf.py turns into scenenet.proto `Pose`s:
 //            `time:T pose:x,y,z lookat:x,y,z` one line per pose (seconds, metres); the tool
@@ -56,7 +62,7 @@
 
 namespace inet {
 
-enum class TrajectoryFormat { Tum, Euroc, Icl, SlamBench, SceneNet, SceneNetV1 };
+enum class TrajectoryFormat { Tum, Euroc, Icl, SlamBench, SceneNet, SceneNetV1, Kitti };
 
 /// Parameters some formats need besides the poses.
 struct TrajectoryFormatOptions {
@@ -65,9 +71,11 @@ struct TrajectoryFormatOptions {
   double icl_fps = 30.0;
   /// scenenet_v1 frame rate: pose k is at k / pose_list_fps (the files hold no times).
   double pose_list_fps = 25.0;
+  /// kitti frame rate: pose k is at k / kitti_fps (10 Hz, KITTI odometry's).
+  double kitti_fps = 10.0;
 };
 
-/// "tum", "euroc", "icl", "slambench", "scenenet", "scenenet_v1"; throws InputError("", field, ...) listing
+/// "tum", "euroc", "icl", "slambench", "scenenet", "scenenet_v1", "kitti"; throws InputError("", field, ...) listing
 /// the valid names.
 TrajectoryFormat parseTrajectoryFormat(const std::string& name,
                                        const std::string& field = "--format");
@@ -76,8 +84,8 @@ const char* trajectoryFormatName(TrajectoryFormat f);
 /// Guesses from extension and content (a first line of column names is passed over):
 /// `time:`/`instance:` lines -> scenenet; comma separated with 17 columns, or 8 with a first
 /// field of whole nanoseconds -> euroc; 8 space-separated columns with a .freiburg name -> icl,
-/// otherwise -> tum (SLAMBench files read as tum); 4 columns -> scenenet_v1. Throws InputError
-/// if it cannot tell.
+/// otherwise -> tum (SLAMBench files read as tum); 4 columns -> scenenet_v1; 12 -> kitti.
+/// Throws InputError if it cannot tell.
 TrajectoryFormat detectTrajectoryFormat(const std::string& path, const std::string& text);
 /// The format an output name implies: .csv euroc, .freiburg icl, .log scenenet, .txt tum.
 std::optional<TrajectoryFormat> trajectoryFormatFromExtension(const std::string& path);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -88,12 +89,20 @@ bool parseSecondsToNs(const std::string& s, TimeNs& out) {
 }
 
 std::string TrajectoryReadReport::summary() const {
-  std::string out;
+  std::vector<std::string> parts;
   if (repeated_stamps > 0)
-    out = fmt::format(
+    parts.push_back(fmt::format(
         "{} pose(s) repeat the stamp before them (first at line {}; {} with another pose) and "
         "were dropped: the first pose of each stamp is kept, as evo does",
-        repeated_stamps, first_repeat_line, repeated_with_other_pose);
+        repeated_stamps, first_repeat_line, repeated_with_other_pose));
+  if (nanosecond_stamps)
+    parts.push_back("stamps of 16 or more digits were read as nanoseconds (as ORB-SLAM3 writes "
+                    "EuRoC runs in TUM layout)");
+  if (ignored_columns > 0)
+    parts.push_back(fmt::format("{} column(s) after the pose on every line were ignored",
+                                ignored_columns));
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
   return out;
 }
 

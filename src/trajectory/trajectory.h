@@ -37,8 +37,12 @@ struct TrajectoryReadReport {
   size_t repeated_with_other_pose = 0;  ///< of those, how many had a different pose
   int first_repeat_line = 0;            ///< file line of the first dropped pose
   bool skipped_header = false;          ///< a first line of column names without '#'
-  /// "" or one line: "2 poses repeat the stamp before them (first at line 10863; 1 with another
-  /// pose): kept the first pose of each stamp".
+  /// tum: stamps of 16 or more integer digits read as nanoseconds (ORB-SLAM3 writes EuRoC
+  /// runs' nanosecond stamps into TUM-layout files: as seconds they would be 44 million years)
+  bool nanosecond_stamps = false;
+  size_t ignored_columns = 0;           ///< per line: columns after the pose (VINS, ov_eval)
+  /// "" or one line, e.g. "2 poses repeat the stamp before them (first at line 10863; 1 with
+  /// another pose) ...: the first pose of each stamp is kept"; findings joined by "; ".
   std::string summary() const;
 };
 

@@ -71,7 +71,7 @@ void expectSamePoses(const Trajectory& a, const Trajectory& b, double tol_m, dou
 
 TEST(TrajectoryFormatNames, RoundTripAndListTheValidNames) {
   for (TrajectoryFormat f : kAll) EXPECT_EQ(parseTrajectoryFormat(trajectoryFormatName(f)), f);
-  const std::string msg = inputErrorOf([] { parseTrajectoryFormat("kitti", "--to"); });
+  const std::string msg = inputErrorOf([] { parseTrajectoryFormat("kitty", "--to"); });
   EXPECT_NE(msg.find("--to"), std::string::npos) << msg;
   EXPECT_NE(msg.find("tum, euroc, icl, slambench, scenenet"), std::string::npos) << msg;
   EXPECT_EQ(trajectoryFormatFromExtension("a/livingRoom0.gt.freiburg"), TrajectoryFormat::Icl);
@@ -331,7 +331,7 @@ TEST(TrajectoryFormats, ErrorsNameFileAndLine) {
   };
   const std::string q = " 0 0 0 1";
   const Case cases[] = {
-      {TrajectoryFormat::Euroc, "%T,1,2,3,1,0,0,0", "9,1,2,3,1,0,0", "8 or 17"},
+      {TrajectoryFormat::Euroc, "%T,1,2,3,1,0,0,0", "9,1,2,3,1,0,0", "8, 11 or 17"},
       {TrajectoryFormat::Euroc, "%T,1,2,3,1,0,0,0", "9,1,2,x,1,0,0,0", "column 4"},
       {TrajectoryFormat::Euroc, "%T,1,2,3,1,0,0,0", "9,1,2,3,1,1,0,0", "norm"},
       {TrajectoryFormat::Euroc, "%T,1,2,3,1,0,0,0", "1,1,2,3,1,0,0,0", "increase"},

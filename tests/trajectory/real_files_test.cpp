@@ -3,6 +3,7 @@
 // marks, header lines without '#'.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -202,6 +203,93 @@ TEST(SceneNetV1Format, RandomPoseBlocksOfTheSharedRoomAreOpenGlCamerasInAYUpWorl
   const Vec3 forward = T.rotation().col(2), down = T.rotation().col(1);
   EXPECT_NEAR((forward - Vec3(-0.927768, -0.36275, 0.0875173)).norm(), 0, 1e-5);
   EXPECT_LT(down.z(), -0.99);  // image down is world down: a level camera
+}
+
+// Estimates as SLAM systems write them (found by trying their published outputs).
+TEST(SlamOutputs, OrbSlam3EurocRunsInTumLayoutHaveNanosecondStamps) {
+  // ORB-SLAM3's KeyFrameTrajectory.txt for EuRoC MH_01: TUM layout, stamps in ns
+  const std::string text =
+      "1403636584513555456.000000 2.181544304 -0.399600983 -0.430783629 -0.559665382 "
+      "-0.625610530 -0.363104433 0.404402494\n"
+      "1403636584763555584.000000 2.181544304 -0.399600983 -0.430783629 -0.559665382 "
+      "-0.625610530 -0.363104433 0.404402494\n";
+  TrajectoryReadReport report;
+  const Trajectory t =
+      parseTrajectory(text, "KeyFrameTrajectory.txt",
+                      detectTrajectoryFormat("KeyFrameTrajectory.txt", text), {}, &report);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.poses[0].t_ns, 1403636584513555456LL);
+  EXPECT_TRUE(report.nanosecond_stamps);
+  EXPECT_NE(report.summary().find("nanoseconds"), std::string::npos);
+}
+
+TEST(SlamOutputs, VinsRowsWithVelocityAndATrailingComma) {
+  // VINS-Mono's vins_result_no_loop.csv: t_ns, p, q (w first), v, and a trailing comma
+  const std::string vins =
+      "1547620674418966272,-0.01929,0.06007,0.56947,0.99965,0.01204,0.02197,-0.00895,-0.01860,"
+      "0.04575,0.59417,\n"
+      "1547620674468966272,-0.01929,0.06007,0.56947,0.99965,0.01204,0.02197,-0.00895,-0.01860,"
+      "0.04575,0.59417,\n";
+  TrajectoryReadReport report;
+  Trajectory t = parseTrajectory(vins, "vins.csv", detectTrajectoryFormat("vins.csv", vins), {},
+                                 &report);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.poses[1].t_ns, 1547620674468966272LL);
+  EXPECT_NEAR(t.poses[0].T_world_camera.q.w(), 0.99965 / std::sqrt(0.99965 * 0.99965 +
+                                                                    0.01204 * 0.01204 +
+                                                                    0.02197 * 0.02197 +
+                                                                    0.00895 * 0.00895),
+              1e-12);
+  EXPECT_EQ(report.ignored_columns, 3u);
+  // an 8-column EuRoC row with a trailing comma
+  t = parseTrajectory("1403636580838555648,-0.00230,0.00318,0.00145,0.99999,0.00021,0.00305,"
+                      "-0.00142,\n",
+                      "e.csv", TrajectoryFormat::Euroc);
+  EXPECT_EQ(t.size(), 1u);
+}
+
+TEST(SlamOutputs, OpenVinsEvalFilesCarryACovariance) {
+  // ov_eval: "# timestamp(s) tx ty tz qx qy qz qw Pr11 Pr12 Pr13 Pr22 Pr23 Pr33 Pt11 ... Pt33"
+  std::string row = "1403715273.262142976 1 2 3 0 0 0 1";
+  for (int k = 0; k < 12; ++k) row += " 0.0001";
+  TrajectoryReadReport report;
+  const std::string text = "# timestamp(s) tx ty tz qx qy qz qw Pr11 Pr12 Pr13 Pr22 Pr23 Pr33 "
+                           "Pt11 Pt12 Pt13 Pt22 Pt23 Pt33\n" + row + "\n";
+  const Trajectory t =
+      parseTrajectory(text, "ov.txt", detectTrajectoryFormat("ov.txt", text), {}, &report);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(report.ignored_columns, 12u);
+}
+
+TEST(KittiFormat, PosesReadInAZUpWorldAndRoundTrip) {
+  // the first KITTI pose is the identity: the camera at the origin looking along its z, which
+  // is the first camera frame's forward: ours is +y, with image-down along -z
+  const std::string text = "1 0 0 0 0 1 0 0 0 0 1 0\n"
+                           "1 0 0 0.5 0 1 0 -0.2 0 0 1 3.0\n";
+  const Trajectory t = parseTrajectory(text, "00.txt", detectTrajectoryFormat("00.txt", text));
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.poses[1].t_ns, 100000000);  // 10 Hz
+  const Mat3 R = t.poses[0].T_world_camera.rotation();
+  EXPECT_NEAR((R.col(2) - Vec3(0, 1, 0)).norm(), 0, 1e-12);   // forward
+  EXPECT_NEAR((R.col(1) - Vec3(0, 0, -1)).norm(), 0, 1e-12);  // image down = world down
+  // 3 m forward, 0.5 right, 0.2 up (KITTI's y is down)
+  EXPECT_NEAR((t.poses[1].T_world_camera.t - Vec3(0.5, 3.0, 0.2)).norm(), 0, 1e-12);
+  const Trajectory back = parseTrajectory(formatTrajectory(t, TrajectoryFormat::Kitti), "b.txt",
+                                          TrajectoryFormat::Kitti);
+  ASSERT_EQ(back.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(back.poses[k].t_ns, t.poses[k].t_ns);
+    EXPECT_NEAR((back.poses[k].T_world_camera.t - t.poses[k].T_world_camera.t).norm(), 0, 1e-9);
+    EXPECT_NEAR(back.poses[k].T_world_camera.q.angularDistance(t.poses[k].T_world_camera.q), 0,
+                1e-9);
+  }
+  // scenenet_v1 round trips too
+  const Trajectory v1 = parseTrajectory(formatTrajectory(t, TrajectoryFormat::SceneNetV1,
+                                                         {.pose_list_fps = 10.0}),
+                                        "v1.txt", TrajectoryFormat::SceneNetV1,
+                                        {.pose_list_fps = 10.0});
+  EXPECT_NEAR((v1.poses[1].T_world_camera.t - t.poses[1].T_world_camera.t).norm(), 0, 1e-9);
+  EXPECT_NEAR(v1.poses[1].T_world_camera.q.angularDistance(t.poses[1].T_world_camera.q), 0, 1e-9);
 }
 
 }  // namespace
