@@ -2,6 +2,7 @@
 // Everything is validated before the first ray; frames stream to disk one at a time (memory
 // stays flat); files are written atomically, so a killed run leaves only whole files and a rerun
 // of the same command skips finished frames and ends with the same bytes.
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -388,6 +389,7 @@ void runGenerate(const GenerateArgs& a) {
 /// sequence costs a user hours: before anything is written, 5 poses spread over the path are
 /// rendered small (80 px wide, 4 spp, the same lens field of view for a pinhole) and their mean
 /// linear luminance, after the exposure, must reach kDarkFloor (sRGB 3/255) unless --allow-dark.
+/// A preview a quarter or more clipped at white is warned about, with the exposure that fixes it.
 constexpr double kDarkFloor = 1e-3;
 
 void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensModel& lens,
@@ -407,6 +409,7 @@ void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensMod
   response.exposure_ev = a.response.exposure_ev;
   double sum = 0.0;
   size_t pixels = 0;
+  std::vector<float> peaks;  // brightest channel of each pixel, after the exposure
   Frame f;
   for (int k = 0; k < 5; ++k) {
     const size_t i = (traj.size() - 1) * static_cast<size_t>(k) / 4;
@@ -416,6 +419,7 @@ void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensMod
       for (int x = 0; x < f.rgb.width; ++x) {
         const Eigen::Vector3f rgb(f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2));
         sum += response.multiplier() * luminance(rgb);
+        peaks.push_back(response.multiplier() * rgb.maxCoeff());
         ++pixels;
       }
   }
@@ -427,6 +431,17 @@ void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensMod
                                  "camera sees; add lights (--auto-lights on, --lights "
                                  "light.xml), raise --exposure-ev, or pass --allow-dark",
                                  mean));
+  // the other way to lose the picture: most of it clipped at white (an open scene in full sun)
+  const size_t clipped = std::count_if(peaks.begin(), peaks.end(), [](float v) { return v >= 1.f; });
+  if (clipped * 4 >= peaks.size()) {
+    std::nth_element(peaks.begin(), peaks.begin() + peaks.size() * 9 / 10, peaks.end());
+    const double p90 = peaks[peaks.size() * 9 / 10];
+    std::fprintf(stderr,
+                 "warning: %s: %.0f %% of the previewed colour pixels are at white (over-exposed); "
+                 "--exposure-ev %.0f would bring 90 %% of them under it\n",
+                 where.c_str(), 100.0 * clipped / peaks.size(),
+                 a.response.exposure_ev - std::ceil(std::log2(p90 / 0.9)));
+  }
 }
 
 /// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.

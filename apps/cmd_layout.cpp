@@ -13,11 +13,13 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "procedural/apartment.h"
+#include "scene/assimp_importer.h"
 #include "scene/layout_json.h"
 #include "scene/front3d_importer.h"
 #include "scene/layout_stats.h"
 #include "scene/light_xml.h"
 #include "scene/nyu40.h"
+#include "variation/auto_lights.h"
 
 namespace inet::app {
 namespace {
@@ -52,11 +54,25 @@ void importScene(Scene s, const std::string& out) {
   if (out.empty()) throw InputError("", "--out", "an output layout.json path is needed");
   const fs::path dir = fs::absolute(fs::path(out)).parent_path();
   std::error_code ec;
+  fs::create_directories(dir, ec);  // as generate --out does
   if (!fs::is_directory(dir, ec))
-    throw InputError(out, "--out", "the folder does not exist: " + dir.string());
+    throw InputError(out, "--out", "cannot create the folder " + dir.string());
+  // images the file embedded (glTF data URIs, .glb) live in a cache: a copy goes next to the
+  // layout, so the folder holds everything it needs
+  const fs::path cache = fs::absolute(embeddedTextureCache());
   for (Material& m : s.materials)
-    for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture})
-      if (!t->empty()) t->file = fs::proximate(fs::absolute(t->path), dir).generic_string();
+    for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture}) {
+      if (t->empty()) continue;
+      const fs::path p = fs::absolute(t->path);
+      if (p.parent_path() == cache) {
+        fs::create_directories(dir / "textures", ec);
+        const fs::path copy = dir / "textures" / p.filename();
+        if (!fs::exists(copy, ec)) fs::copy_file(p, copy, ec);
+        if (ec) throw InputError(copy.string(), "--out", "cannot write: " + ec.message());
+        t->path = copy.string();
+      }
+      t->file = fs::proximate(fs::absolute(t->path), dir).generic_string();
+    }
   for (Mesh& m : s.meshes)  // importers leave the resolved path of a referenced mesh file
     if (m.source.kind == MeshSource::Kind::File)
       m.source.file = fs::proximate(fs::absolute(m.source.file), dir).generic_string();
@@ -248,11 +264,20 @@ void registerLayout(CLI::App& app) {
       Front3dOptions opt;
       opt.models_dir = *models;
       opt.label_map = import_args->labels;
+      opt.add_lights = false;  // the automatic lights below, as for every imported scene
       Front3dReport report;
       Scene s = importFront3d(import_args->path, opt, &report);
       const std::string warn = report.summary();
       if (!warn.empty())
         std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(), warn.c_str());
+      if (!import_args->lights.empty())
+        applyLightSetup(s, loadLightXml(import_args->lights), import_args->lights);
+      AutoLightOptions auto_opt;
+      auto_opt.mode = parseAutoLightMode(import_args->auto_lights, "--auto-lights");
+      const AutoLightReport lights = addAutoLights(s, auto_opt);
+      if (!lights.summary().empty())
+        std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(),
+                     lights.summary().c_str());
       importScene(std::move(s), *out);
     } else if (kind == "mitsuba") {
       if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");

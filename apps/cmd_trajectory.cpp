@@ -214,7 +214,7 @@ void registerTrajectory(CLI::App& app) {
   auto scene = std::make_shared<SceneArgs>();
   show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet, scenenet_v1, kitti)")
       ->required();
-  scene->addTo(*show);
+  scene->addTo(*show, "no scene drawn, only the path");
   show->add_option("--out", s->second, "PNG to write")->required();
   show->callback([s, scene] {
     Trajectory traj = readTrajectoryFile(s->first);

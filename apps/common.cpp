@@ -18,16 +18,18 @@
 #include "procedural/apartment.h"
 #include "scene/assimp_importer.h"
 #include "scene/default_scene.h"
+#include "scene/front3d_importer.h"
 #include "scene/layout_json.h"
 #include "scene/light_xml.h"
 #include "variation/auto_lights.h"
 
 namespace inet::app {
 
-void SceneArgs::addTo(CLI::App& cmd) {
+void SceneArgs::addTo(CLI::App& cmd, const std::string& without) {
   cmd.add_option("--layout,--scene", path,
-                 "layout.json, a Mitsuba scene (.xml, docs/mitsuba.md), or a mesh scene (.obj "
-                 ".gltf .glb .ply ...) imported with Assimp; default: the built-in furnished room");
+                 "layout.json, a Mitsuba scene (.xml, docs/mitsuba.md), a 3D-FRONT house (.json), "
+                 "or a mesh scene (.obj .gltf .glb .ply ...) imported with Assimp "
+                 "(docs/import.md); default: " + without);
   cmd.add_option("--up", up,
                  "up axis of an imported scene: y, z or auto (default: auto for mesh files: "
                  "glTF is Y-up, others by where their floors and ceilings face, said on "
@@ -68,7 +70,22 @@ Scene SceneArgs::load() const {
 Scene SceneArgs::loadScene() const {
   if (path.empty()) return makeDefaultScene();
   std::filesystem::path p(path);
-  if (p.extension() == ".json") return loadLayout(path);
+  if (p.extension() == ".json") {
+    try {
+      return loadLayout(path);
+    } catch (const InputError& e) {
+      // a 3D-FRONT house works as it is too (layout import writes it as a layout once)
+      if (e.field() != "format" || e.problem().find("3D-FRONT") == std::string::npos) throw;
+    }
+    Front3dOptions opt;
+    opt.label_map = labels;
+    opt.add_lights = false;  // the automatic lights (load) light it, as every imported scene
+    Front3dReport report;
+    Scene s = importFront3d(path, opt, &report);
+    const std::string warn = report.summary();
+    if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
+    return s;
+  }
   if (!(scale > 0)) throw InputError(path, "--scale", "must be > 0");
   if (isMitsuba()) {
     MitsubaReport report;

@@ -24,8 +24,9 @@ struct SceneArgs {
   std::string labels;
   std::string lights;  ///< light.xml to apply, "" = the scene's own lights
   std::string auto_lights = "auto";  ///< variation/auto_lights.h: auto, on, off
-  /// Adds --layout/--scene, --up, --scale, --labels, --lights, --auto-lights to `cmd`.
-  void addTo(CLI::App& cmd);
+  /// Adds --layout/--scene, --up, --scale, --labels, --lights, --auto-lights to `cmd`;
+  /// `without` says what the command does without --layout.
+  void addTo(CLI::App& cmd, const std::string& without = "the built-in furnished room");
   /// Loads the scene, applies --lights and then the automatic lights (--auto-lights); prints
   /// the importer's warning summary and what the automatic lights did, once. Throws InputError.
   Scene load() const;

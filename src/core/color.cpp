@@ -34,7 +34,7 @@ struct SrgbTables {
     for (int k = 1; k < 256; ++k) {
       // Start from the analytic inverse of the code boundary, then walk ulp by ulp.
       double e = (k - 0.5) / 255.0;
-      double lin = e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+      double lin = srgbEotf(e);
       float v = static_cast<float>(lin);
       while (v > 0.0f && srgbCodeReference(v) >= k) v = std::nextafter(v, 0.0f);
       while (srgbCodeReference(v) < k) v = std::nextafter(v, 2.0f);

@@ -1,6 +1,7 @@
 #pragma once
 // Colour helpers shared by the renderer and the writers.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 
 #include "core/image.h"
@@ -17,6 +18,10 @@ typename V::Scalar luminance(const V& c) {
 
 /// sRGB opto-electronic transfer function (IEC 61966-2-1) of a linear value in [0, 1].
 double srgbOetf(double linear);
+/// Its inverse, the sRGB EOTF: an encoded value in [0, 1] -> linear.
+inline double srgbEotf(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
 
 /// One linear value -> 8-bit sRGB code, exactly floor(255 * srgbOetf(clamp(v, 0, 1)) + 0.5) for
 /// every float v (NaN and negatives give 0, +inf gives 255). Implemented with a 4096-bucket table

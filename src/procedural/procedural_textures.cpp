@@ -286,7 +286,7 @@ const std::array<double, 256>& srgbDecodeTable() {
     std::array<double, 256> t{};
     for (int c = 0; c < 256; ++c) {
       double v = c / 255.0;
-      t[c] = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+      t[c] = srgbEotf(v);
     }
     return t;
   }();

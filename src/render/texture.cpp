@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/color.h"
 #include "core/image_io.h"
 
 namespace fs = std::filesystem;
@@ -15,10 +16,6 @@ namespace fs = std::filesystem;
 namespace inet {
 namespace {
 
-/// The exact sRGB EOTF (IEC 61966-2-1): encoded value in [0, 1] -> linear.
-double srgbEotf(double c) {
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
 
 /// The source texels one destination texel of a halved level averages along one axis.
 struct Taps {

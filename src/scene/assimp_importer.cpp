@@ -3,20 +3,29 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
 #include <set>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/rng.h"
 #include "scene/label_map.h"
 #include "scene/nyu40.h"
+#include "scene/obj_prepass.h"
 #include "scene/room_shell.h"
 
 namespace fs = std::filesystem;
@@ -62,9 +71,36 @@ void checkAxes(double scale, char up, const std::string& file, const std::string
     throw InputError(file, field, fmt::format("up axis must be 'y' or 'z', got '{}'", up));
 }
 
-/// Reads `path` with Assimp. The importer owns the returned scene.
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext;
+}
+
+/// Assimp's file system, but for one file whose text is given (an OBJ file rewritten by
+/// prepassObj): the MTL files and textures it names are still read from its folder.
+class PatchedFileSystem : public Assimp::DefaultIOSystem {
+ public:
+  PatchedFileSystem(const std::string& path, std::string text)
+      : path_(fs::absolute(path).lexically_normal()), text_(std::move(text)) {}
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code ec;
+    if (fs::absolute(file, ec).lexically_normal() == path_)
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(text_.data()),
+                                        text_.size());
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  fs::path path_;
+  std::string text_;
+};
+
+/// Reads `path` with Assimp (an OBJ file through prepassObj first, whose findings go to
+/// `prepass` when given). The importer owns the returned scene.
 std::unique_ptr<Assimp::Importer> readFile(const std::string& path, const std::string& where_file,
-                                           const std::string& where_field) {
+                                           const std::string& where_field,
+                                           ObjPrepass* prepass = nullptr) {
   const bool self = (where_file == path);  // errors about the file itself need not repeat it
   const std::string what = self ? std::string() : fmt::format("'{}': ", path);
   std::error_code ec;
@@ -72,6 +108,17 @@ std::unique_ptr<Assimp::Importer> readFile(const std::string& path, const std::s
   if (fs::is_directory(path, ec))
     throw InputError(where_file, where_field, what + "is a folder, expected a mesh file");
   auto importer = std::make_unique<Assimp::Importer>();
+  if (lowerExtension(path) == ".obj") {
+    ObjPrepass pre;
+    try {
+      pre = prepassObj(path);
+    } catch (const InputError& e) {
+      if (self) throw;
+      throw InputError(where_file, where_field, what + e.field() + ": " + e.problem());
+    }
+    if (!pre.text.empty()) importer->SetIOHandler(new PatchedFileSystem(path, pre.text));
+    if (prepass) *prepass = std::move(pre);
+  }
   const aiScene* scene = importer->ReadFile(path, kImportFlags);
   if (!scene || !scene->mRootNode)
     throw InputError(where_file, where_field,
@@ -191,11 +238,6 @@ size_t countTriangles(const aiMesh* m) {
   return n;
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext;
-}
 
 std::string uniqueId(std::string base, std::set<std::string>& used) {
   if (base.empty()) base = "unnamed";
@@ -217,12 +259,56 @@ Vec3f readColor(const aiMaterial* m, const char* key, unsigned type, unsigned in
 /// random) resolves to one of its images, chosen by a hash of the material name so that the
 /// choice is the same on every run. Embedded textures ("*0") and missing files are counted in
 /// the report and ignored.
-TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string& material,
-                     const fs::path& model_dir, ImportReport& report) {
+/// Writes an image embedded in the scene file (a glTF data URI, a .glb buffer view) into the
+/// cache and returns its path, or "" when it cannot be read.
+fs::path extractEmbedded(const aiTexture* tex) {
+  if (!tex || !tex->pcData || tex->mWidth == 0) return {};
+  std::string bytes, ext;
+  if (tex->mHeight == 0) {  // compressed: mWidth bytes of a PNG/JPEG file
+    bytes.assign(reinterpret_cast<const char*>(tex->pcData), tex->mWidth);
+    ext = tex->achFormatHint;
+    if (ext == "jpeg") ext = "jpg";
+    if (ext != "png" && ext != "jpg") return {};
+  } else {  // raw texels, BGRA: written as an 8-bit RGBA PNG
+    ImageU8 img(static_cast<int>(tex->mWidth), static_cast<int>(tex->mHeight), 4);
+    for (unsigned y = 0; y < tex->mHeight; ++y)
+      for (unsigned x = 0; x < tex->mWidth; ++x) {
+        const aiTexel& t = tex->pcData[y * tex->mWidth + x];
+        img.at(x, y, 0) = t.r, img.at(x, y, 1) = t.g, img.at(x, y, 2) = t.b, img.at(x, y, 3) = t.a;
+      }
+    bytes.assign(reinterpret_cast<const char*>(img.data.data()), img.data.size());
+    const fs::path out = embeddedTextureCache() / fmt::format("{:016x}.png", stableHash(bytes));
+    if (!fs::exists(out)) writePng(out, img);
+    return out;
+  }
+  const fs::path out = embeddedTextureCache() / fmt::format("{:016x}.{}", stableHash(bytes), ext);
+  std::error_code ec;
+  if (!fs::exists(out, ec))
+    writeFileAtomic(out, [&](const fs::path& tmp) {
+      std::ofstream(tmp, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    });
+  return out;
+}
+
+TextureRef textureOf(const aiScene* ai, const aiMaterial* in, aiTextureType type,
+                     const std::string& material, const fs::path& model_dir,
+                     ImportReport& report) {
   aiString file;
   if (in->GetTextureCount(type) == 0 || in->GetTexture(type, 0, &file) != AI_SUCCESS) return {};
   std::string written = file.C_Str();
   if (written.empty()) return {};
+  if (const aiTexture* embedded = ai->GetEmbeddedTexture(file.C_Str())) {
+    const fs::path path = extractEmbedded(embedded);
+    if (path.empty()) {
+      ++report.skipped_textures;
+      if (report.missing_textures.size() < 5) report.missing_textures.push_back(written);
+      return {};
+    }
+    ++report.embedded_textures;
+    TextureRef ref;
+    ref.path = ref.file = path.string();
+    return ref;
+  }
   if (written[0] == '*') {
     ++report.skipped_textures;
     return {};
@@ -240,6 +326,7 @@ TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string
     std::sort(images.begin(), images.end());
     if (images.empty()) {
       ++report.skipped_textures;
+      if (report.missing_textures.size() < 5) report.missing_textures.push_back(written);
       return {};
     }
     const uint64_t h = stableHash(material);  // the same image on every run
@@ -247,6 +334,7 @@ TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string
   }
   if (!fs::is_regular_file(path, ec)) {
     ++report.skipped_textures;
+    if (report.missing_textures.size() < 5) report.missing_textures.push_back(written);
     return {};
   }
   TextureRef ref;
@@ -259,7 +347,7 @@ TextureRef textureOf(const aiMaterial* in, aiTextureType type, const std::string
 /// diffuse and normal textures. With a diffuse texture an OBJ's Kd is ignored (the texture is the
 /// colour, as in Blender's importer); other formats' diffuse colour is glTF's base-colour factor,
 /// which multiplies the texture.
-Material convertMaterial(const aiMaterial* in, const fs::path& model_dir, bool is_obj,
+Material convertMaterial(const aiScene* ai, const aiMaterial* in, const fs::path& model_dir, bool is_obj,
                          std::set<std::string>& used_ids, ImportReport& report) {
   Material mat;
   aiString name;
@@ -280,8 +368,10 @@ Material convertMaterial(const aiMaterial* in, const fs::path& model_dir, bool i
   if (albedo.minCoeff() < 0.f || albedo.maxCoeff() > 1.f) ++report.clamped_materials;
   mat.albedo = albedo.cwiseMax(0.f).cwiseMin(1.f);
   mat.emission = emission.cwiseMax(0.f);
-  mat.albedo_texture = textureOf(in, aiTextureType_DIFFUSE, name.C_Str(), model_dir, report);
-  mat.normal_texture = textureOf(in, aiTextureType_NORMALS, name.C_Str(), model_dir, report);
+  mat.albedo_texture = textureOf(ai, in, aiTextureType_DIFFUSE, name.C_Str(), model_dir, report);
+  if (mat.albedo_texture.empty())  // glTF 2's base colour (Assimp 5.2 keeps it apart)
+    mat.albedo_texture = textureOf(ai, in, aiTextureType_BASE_COLOR, name.C_Str(), model_dir, report);
+  mat.normal_texture = textureOf(ai, in, aiTextureType_NORMALS, name.C_Str(), model_dir, report);
   if (!mat.albedo_texture.empty() && is_obj) mat.albedo = Vec3f::Ones();
   if (in->GetTextureCount(aiTextureType_HEIGHT) > 0) ++report.ignored_bump_maps;
   return mat;
@@ -381,7 +471,7 @@ struct SceneBuilder {
     int& mat = material_of[ai_index];
     if (mat < 0) {
       scene.materials.push_back(
-          convertMaterial(ai->mMaterials[ai_index], model_dir, is_obj, material_ids, report));
+          convertMaterial(ai, ai->mMaterials[ai_index], model_dir, is_obj, material_ids, report));
       mat = static_cast<int>(scene.materials.size()) - 1;
     }
     return mat;
@@ -406,6 +496,12 @@ struct SceneBuilder {
 }  // namespace
 
 std::string ImportReport::summary(const std::string& default_category) const {
+  auto listed = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (size_t i = 0; i < v.size() && i < 8; ++i) s += (i ? ", " : "") + v[i];
+    if (v.size() > 8) s += fmt::format(", ... ({} more)", v.size() - 8);
+    return s;
+  };
   std::vector<std::string> parts;
   if (unmatched_objects > 0) {
     std::string names;
@@ -427,12 +523,32 @@ std::string ImportReport::summary(const std::string& default_category) const {
         flattened_triangles, kMaxNormalDeviationDeg));
   if (skipped_textures > 0)
     parts.push_back(fmt::format(
-        "{} texture(s) were embedded in the file, missing or an empty folder and were skipped",
-        skipped_textures));
+        "{} texture(s) were missing, an empty folder or an unreadable embedded image and were "
+        "skipped ({})",
+        skipped_textures, listed(missing_textures)));
   if (ignored_bump_maps > 0)
     parts.push_back(fmt::format(
         "{} material(s) have a bump (height) map, which is not supported and was ignored",
         ignored_bump_maps));
+  if (!missing_mtllibs.empty())
+    parts.push_back(fmt::format("material library {} not found next to the file",
+                                listed(missing_mtllibs)));
+  if (!grey_materials.empty())
+    parts.push_back(fmt::format("{} material(s) defined in no material library get a default "
+                                "grey ({})",
+                                grey_materials.size(), listed(grey_materials)));
+  if (obj_w_values > 0)
+    parts.push_back(fmt::format("{} vertex line(s) have a 4th (w) value, ignored as for "
+                                "polygons it means nothing (Assimp would divide by it)",
+                                obj_w_values));
+  if (obj_leading_dots > 0)
+    parts.push_back(fmt::format("{} number(s) written with a leading dot (.5) were read as 0.5",
+                                obj_leading_dots));
+  if (extent_m > 200.0)
+    parts.push_back(fmt::format(
+        "the scene is {:.0f} m across: if its unit is not the metre, give --scale (0.01 for "
+        "centimetres, 0.001 for millimetres)",
+        extent_m));
   if (split_shells > 0)
     parts.push_back(fmt::format(
         "{} object(s) labelled wall held the room's floor or ceiling too: split into floor and "
@@ -456,10 +572,25 @@ std::string ImportReport::summary(const std::string& default_category) const {
   return out;
 }
 
+fs::path embeddedTextureCache() {
+  std::vector<fs::path> candidates;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    candidates.push_back(fs::path(xdg) / "interiornet" / "embedded");
+  if (const char* home = std::getenv("HOME"); home && *home)
+    candidates.push_back(fs::path(home) / ".cache" / "interiornet" / "embedded");
+  candidates.push_back(fs::temp_directory_path() / "interiornet-embedded");
+  for (const fs::path& dir : candidates) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (fs::is_directory(dir, ec) && access(dir.c_str(), W_OK) == 0) return dir;
+  }
+  throw InputError(candidates.back().string(), "", "no writable folder for embedded textures");
+}
+
 char detectUpAxis(const Scene& scene, const std::string& path, std::string* why) {
   const std::string ext = lowerExtension(path);
   if (ext == ".gltf" || ext == ".glb") {
-    if (why) *why = "glTF files are Y-up by their specification";
+    if (why) *why = "Y-up: glTF files are Y-up by their specification";
     return 'y';
   }
   const int floor = *nyu40FromName("floor"), ceiling = *nyu40FromName("ceiling");
@@ -517,8 +648,13 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
         path, "default_category",
         fmt::format("unknown NYU40 class '{}' (valid: {})", opt.default_category, nyu40NameList()));
   const LabelMap labels = opt.label_map.empty() ? LabelMap() : LabelMap::load(opt.label_map);
-  auto importer = readFile(path, path, "");
+  ObjPrepass prepass;
+  auto importer = readFile(path, path, "", &prepass);
   SceneBuilder builder(importer->GetScene(), path, opt, labels, *default_id);
+  builder.report.obj_w_values = prepass.w_values;
+  builder.report.obj_leading_dots = prepass.leading_dots;
+  builder.report.missing_mtllibs = prepass.missing_mtllibs;
+  builder.report.grey_materials = prepass.grey_materials;
   walkNodes(importer->GetScene()->mRootNode, Mat4::Identity(),
             [&](const aiNode* node, const Mat4& T_file) { builder.addNode(node, T_file); });
   Scene& scene = builder.scene;
@@ -526,6 +662,8 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   if (scene.objects.empty())
     throw InputError(path, "", "the file contains no triangles (only lines or points?)");
   if (opt.split_shells) builder.report.split_shells = splitRoomShells(scene);
+  const auto [lo, hi] = scene.bounds();
+  builder.report.extent_m = (hi - lo).maxCoeff();
   builder.report.objects = scene.objects.size();
   scene.validate(path);
   builder.report.up = opt.up;

@@ -13,6 +13,7 @@
 // to vertex positions (so meshes are in metres, Z up) and conjugated into node transforms
 // (T' = C T C^-1, C = scale * R_up), so a rigid node transform stays rigid.
 // Faces that are not triangles after triangulation (lines, points) are dropped and counted.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,12 +39,20 @@ struct ImportReport {
   size_t dropped_faces = 0;                  ///< non-triangle faces (lines, points) skipped
   size_t clamped_materials = 0;              ///< materials whose diffuse colour left [0, 1]
   size_t flattened_triangles = 0;            ///< triangles whose vertex normals crossed a hard edge
-  size_t skipped_textures = 0;               ///< textures embedded, missing, or empty folders
+  size_t skipped_textures = 0;  ///< textures missing, empty folders, or unreadable embedded ones
+  std::vector<std::string> missing_textures;  ///< their names as written (up to a few)
+  size_t embedded_textures = 0;  ///< embedded images (glTF data URIs, .glb) written to the cache
   size_t ignored_bump_maps = 0;  ///< materials with a bump (height) map, which is not supported
   /// Materials without Ke whose ambient colour Ka exceeds 1 (no reflectance can): taken as
   /// emitted radiance, the way older OBJ files (Cornell boxes) give their light.
   std::vector<std::string> ka_emission_materials;
   size_t split_shells = 0;  ///< wall objects that held the floor or ceiling too (room_shell.h)
+  // OBJ files (scene/obj_prepass.h): what Assimp would have got wrong or said nothing about
+  size_t obj_w_values = 0;                    ///< `v x y z w` lines whose w was dropped
+  size_t obj_leading_dots = 0;                ///< numbers like `.5` read as 0.5
+  std::vector<std::string> missing_mtllibs;   ///< `mtllib` files not found
+  std::vector<std::string> grey_materials;    ///< `usemtl` names no library defines
+  double extent_m = 0.0;   ///< largest side of the scene's bounds (a hint for a wrong --scale)
   char up = 'z';           ///< the up axis the scene was read with
   std::string up_reason;   ///< with up = 'a': why that axis (detectUpAxis)
 
@@ -60,6 +69,11 @@ struct ImportReport {
 ///    corridor is the exception: give --up then).
 /// `scene` is the file imported as Z-up (its own axes).
 char detectUpAxis(const Scene& scene, const std::string& path, std::string* why);
+
+/// Where images embedded in scene files are written once, as <hash>.<ext>:
+/// $XDG_CACHE_HOME/interiornet/embedded, else ~/.cache/interiornet/embedded, else the temporary
+/// folder. The same bytes give the same file, so reimporting writes nothing.
+std::filesystem::path embeddedTextureCache();
 
 /// Imports the mesh file `path` as a Scene named after the file's stem. Throws InputError naming
 /// the file when it is missing, unreadable, malformed (Assimp's message), has no triangles, when

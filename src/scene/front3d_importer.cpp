@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/color.h"
 #include "core/error.h"
 #include "scene/assimp_importer.h"
 #include "scene/label_map.h"
@@ -200,7 +201,7 @@ Scene importFront3d(const std::string& path, const Front3dOptions& opt, Front3dR
           const double v = std::clamp(
               r.number(m["color"][k], fmt::format("material[{}].color[{}]", i, k)) / 255.0, 0.0,
               1.0);
-          c[k] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+          c[k] = static_cast<float>(srgbEotf(v));
         }
         mat.albedo = c.cwiseMin(0.9f);  // keep pure white paint from being a perfect reflector
       }

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/color.h"
 #include "core/image_io.h"
 #include "scene/mitsuba_importer.h"
 
@@ -81,7 +82,7 @@ std::optional<ImageF> readLinear(const std::string& path) {
   ImageF out(in.width, in.height, in.channels);
   for (size_t i = 0; i < in.data.size(); ++i) {
     const double c = in.data[i] / 255.0;
-    out.data[i] = static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    out.data[i] = static_cast<float>(srgbEotf(c));
   }
   if (in.channels == 2 || in.channels == 4)  // alpha is not colour: undo the decoding
     for (size_t i = static_cast<size_t>(in.channels) - 1; i < in.data.size(); i += in.channels)

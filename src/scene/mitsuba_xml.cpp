@@ -66,10 +66,6 @@ std::optional<std::vector<double>> parseNumbers(const std::string& text) {
   return out;
 }
 
-double srgbToLinear(double c) {
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 /// "#rrggbb" as a linear colour (hex colours are display, i.e. sRGB-encoded, values).
 std::optional<Vec3f> parseHex(const std::string& text) {
   const std::string t = trim(text);
@@ -80,7 +76,7 @@ std::optional<Vec3f> parseHex(const std::string& text) {
     if (!std::isxdigit(static_cast<unsigned char>(byte[0])) ||
         !std::isxdigit(static_cast<unsigned char>(byte[1])))
       return std::nullopt;
-    out[c] = static_cast<float>(srgbToLinear(std::strtol(byte.c_str(), nullptr, 16) / 255.0));
+    out[c] = static_cast<float>(srgbEotf(std::strtol(byte.c_str(), nullptr, 16) / 255.0));
   }
   return out;
 }
@@ -561,7 +557,7 @@ Slot Plugin::slot(const std::string& name, const Vec3f& fallback, Notes& notes) 
     if (!v || (v->size() != 1 && v->size() != 3))
       doc_->fail(n, fmt::format("value=\"{}\": expected 'r, g, b' or one number", text));
     const Vec3 c = v->size() == 1 ? Vec3::Constant((*v)[0]) : Vec3((*v)[0], (*v)[1], (*v)[2]);
-    s.value = tag == "srgb" ? Vec3(srgbToLinear(c.x()), srgbToLinear(c.y()), srgbToLinear(c.z()))
+    s.value = tag == "srgb" ? Vec3(srgbEotf(c.x()), srgbEotf(c.y()), srgbEotf(c.z()))
                                   .cast<float>()
                             : c.cast<float>();
   } else if (tag == "spectrum") {

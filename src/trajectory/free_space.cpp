@@ -160,7 +160,10 @@ FreeSpace::FreeSpace(const Scene& scene, const FreeSpaceOptions& opt, const std:
   } else {
     std::tie(lo, hi) = boundsWithoutHugePlanes(scene, tris);
     if (!(lo.x() <= hi.x()))
-      throw InputError(source, "geometry", "the scene is only planes larger than 50 m");
+      throw InputError(source, "geometry",
+                       "every object of the scene is wider than 50 m (a ground, a sky dome: no "
+                       "room to move in); if the file is in centimetres or millimetres, give "
+                       "--scale 0.01 or 0.001");
     // room for cameras at up to 2 m (and their clearance) above low scenes without a ceiling
     hi.z() = std::max(hi.z(), lo.z() + 2.8);
   }

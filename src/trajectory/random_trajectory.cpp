@@ -99,9 +99,10 @@ std::string noStartMessage(const FreeSpace& space, const RandomTrajectoryOptions
   const std::string what = fmt::format(
       "no place {:.2f} m from all geometry at {:.1f}-{:.1f} m above a floor for a camera "
       "(tried a {:.3f} m voxel grid: {:.1f} m^3 of free space indoors, {:.1f} m^3 of it {:.2f} m "
-      "from the geometry; floors at z = {} m)",
+      "from the geometry; {})",
       opt.clearance, opt.min_height, opt.max_height, space.voxel(), space.indoorVolume(),
-      space.freeVolume(clear), clear, floors.empty() ? "none found" : floors);
+      space.freeVolume(clear), clear,
+      floors.empty() ? std::string("no floor found") : "floors at z = " + floors + " m");
   if (space.floorLevels().empty())
     return what + ": no floor was found (a level surface of at least 2 m^2 with free space "
                   "above it); is the up axis right (--up y for Y-up files)?";

@@ -4,7 +4,9 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <set>
 
@@ -12,9 +14,12 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "scene/nyu40.h"
 #include "scene/occupancy.h"
 #include "scene/primitives.h"
+
+namespace fs = std::filesystem;
 
 namespace inet {
 namespace {
@@ -111,6 +116,41 @@ std::vector<size_t> clusterCells(const std::vector<Eigen::Vector2d>& xy, size_t 
   return out;
 }
 
+/// Per voxel, the volume (m^3) of the connected set of free voxels it belongs to (6-neighbour
+/// flood fill; 0 for occupied voxels).
+std::vector<double> freeVolumes(const OccupancyGrid& g) {
+  std::vector<int> comp(g.size(), -1);
+  std::vector<size_t> count, stack;
+  for (size_t start = 0; start < g.size(); ++start) {
+    if (g.occupied[start] || comp[start] >= 0) continue;
+    const int id = static_cast<int>(count.size());
+    count.push_back(0);
+    comp[start] = id;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const size_t v = stack.back();
+      stack.pop_back();
+      ++count[id];
+      const int i = static_cast<int>(v % g.nx), j = static_cast<int>((v / g.nx) % g.ny),
+                k = static_cast<int>(v / (static_cast<size_t>(g.nx) * g.ny));
+      for (const auto& [di, dj, dk] : {std::array{1, 0, 0}, std::array{-1, 0, 0},
+                                       std::array{0, 1, 0}, std::array{0, -1, 0},
+                                       std::array{0, 0, 1}, std::array{0, 0, -1}}) {
+        if (!g.inside(i + di, j + dj, k + dk)) continue;
+        const size_t u = g.index(i + di, j + dj, k + dk);
+        if (g.occupied[u] || comp[u] >= 0) continue;
+        comp[u] = id;
+        stack.push_back(u);
+      }
+    }
+  }
+  const double cell = g.voxel * g.voxel * g.voxel;
+  std::vector<double> out(g.size(), 0.0);
+  for (size_t v = 0; v < g.size(); ++v)
+    if (comp[v] >= 0) out[v] = static_cast<double>(count[comp[v]]) * cell;
+  return out;
+}
+
 /// The spaces of the grid (see the header comment) and, per column, its runs.
 struct SpaceAnalysis {
   OccupancyGrid grid;
@@ -127,7 +167,9 @@ SpaceAnalysis findSpaces(const WorldTriangles& tris, const Vec3& lo, const Vec3&
   const OccupancyGrid& g = a.grid;
   const int min_run = static_cast<int>(std::ceil(opt.min_room_height_m / g.voxel)) - 1;
   a.runs.resize(static_cast<size_t>(g.nx) * g.ny);
-  std::vector<std::pair<size_t, size_t>> ids;  // run id -> (column, index)
+  // the free voxels' connected volumes: the inside of a closed wardrobe taller than a room's
+  // 1.9 m has floor-to-ceiling runs too, but its few m^3 are shut off from everything
+  const std::vector<double> volume = freeVolumes(g);
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       std::vector<Run>& col = a.runs[i + static_cast<size_t>(g.nx) * j];
@@ -135,7 +177,9 @@ SpaceAnalysis findSpaces(const WorldTriangles& tris, const Vec3& lo, const Vec3&
         if (!g.occupied[g.index(i, j, k - 1)] || g.occupied[g.index(i, j, k)]) continue;
         int e = k;
         while (e < g.nz && !g.occupied[g.index(i, j, e)]) ++e;
-        if (e < g.nz && e - k >= min_run && (e - k) * g.voxel <= 15.0) col.push_back({k, e - 1});
+        if (e < g.nz && e - k >= min_run && (e - k) * g.voxel <= 15.0 &&
+            volume[g.index(i, j, k)] >= opt.min_space_volume_m3)
+          col.push_back({k, e - 1});
         k = e;
       }
     }
@@ -205,7 +249,46 @@ int spaceAt(const SpaceAnalysis& a, const Vec3& p) {
   return best;
 }
 
-void addDaylight(Scene& scene) {
+/// The procedural apartments' sky and sun (`indoors`: seen through windows, where the walls take
+/// most of it), or the same light 1/100 as strong for a scene in the open, so that a sunlit
+/// white surface is not far past white at the default exposure (0.8 x 3.9 W/m^2 / pi = 1.0).
+/// A material's diffuse albedo as a luminance: its albedo times its texture's mean (linear; the
+/// image read once and remembered in `means`; 0.5 when it cannot be read).
+double albedoLuminance(const Material& m, std::map<std::string, double>& means) {
+  double t = 1.0;
+  if (!m.albedo_texture.empty()) {
+    auto it = means.find(m.albedo_texture.path);
+    if (it == means.end()) {
+      double mean = 0.5;
+      try {
+        const std::string ext = fs::path(m.albedo_texture.path).extension().string();
+        const ImageU8 img = ext == ".jpg" || ext == ".jpeg" || ext == ".JPG"
+                                ? readJpeg8(m.albedo_texture.path)
+                                : readPng8(m.albedo_texture.path);
+        const int c = std::min(img.channels, 3);
+        double sum = 0.0;
+        size_t n = 0;
+        for (int y = 0; y < img.height; ++y)
+          for (int x = 0; x < img.width; ++x) {
+            Eigen::Vector3f rgb;
+            for (int k = 0; k < 3; ++k)
+              rgb[k] = static_cast<float>(srgbEotf(img.at(x, y, std::min(k, c - 1)) / 255.0));
+            sum += luminance(rgb);
+            ++n;
+          }
+        if (n > 0) mean = sum / static_cast<double>(n);
+      } catch (const std::exception&) {
+      }
+      it = means.emplace(m.albedo_texture.path, mean).first;
+    }
+    t = it->second;
+  }
+  if (m.type == MaterialType::Dielectric || m.type == MaterialType::ThinDielectric) return 0.0;
+  return std::clamp(luminance(m.albedo) * t, 0.0, 1.0);
+}
+
+void addDaylight(Scene& scene, bool indoors) {
+  const float scale = indoors ? 1.f : 0.01f;
   // the sun 40 degrees up from the south-east, as a late-morning apartment
   const double el = 40.0 * M_PI / 180.0, az = -45.0 * M_PI / 180.0;
   const Vec3 to_sun(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
@@ -215,14 +298,14 @@ void addDaylight(Scene& scene) {
   sky.sky_model = SkyModel::Preetham;
   sky.direction = -to_sun;
   sky.turbidity = 3.f;
-  sky.intensity = 40.f;
+  sky.intensity = 40.f * scale;
   scene.lights.push_back(sky);
   Light sun;
   sun.name = "auto_sun";
   sun.type = LightType::Sun;
   sun.direction = -to_sun;
   sun.temperature_k = 5500.f;
-  sun.intensity = 350.f;
+  sun.intensity = 350.f * scale;
   scene.lights.push_back(sun);
 }
 
@@ -258,6 +341,9 @@ bool sceneHasLight(const Scene& scene) {
 }
 
 std::string AutoLightReport::summary() const {
+  if (no_room)
+    return "the scene has no light, and no place for one: every object is wider than 50 m (in "
+           "centimetres or millimetres? give --scale 0.01 or 0.001)";
   if (luminaires.empty() && ceiling_panels == 0 && !daylight) return "";
   std::vector<std::string> parts;
   if (!luminaires.empty()) {
@@ -285,15 +371,14 @@ AutoLightReport addAutoLights(Scene& scene, const AutoLightOptions& opt) {
   const WorldTriangles tris = worldTriangles(scene);
   if (tris.triangles.empty()) return report;
   auto [lo, hi] = boundsWithoutHugePlanes(scene, tris);
-  if (!(lo.x() <= hi.x())) return report;
+  if (!(lo.x() <= hi.x())) {
+    report.no_room = true;
+    return report;
+  }
   lo -= Vec3::Constant(0.2);
   hi += Vec3::Constant(0.2);
   SpaceAnalysis a = findSpaces(tris, lo, hi, opt);
   report.spaces = a.spaces.size();
-  for (Space& s : a.spaces) {
-    s.flux = opt.flux_per_m2 * s.area;
-    report.space_area_m2 += s.area;
-  }
   const Vec3f colour = blackbodyRgb(opt.temperature_k);
 
   // 1. luminaires: their world area and the space each lights
@@ -307,6 +392,22 @@ AutoLightReport addAutoLights(Scene& scene, const AutoLightOptions& opt) {
     area[o] += 0.5 * (p1 - p0).cross(p2 - p0).norm();
     lo_o[o] = lo_o[o].cwiseMin(p0).cwiseMin(p1).cwiseMin(p2);
     hi_o[o] = hi_o[o].cwiseMax(p0).cwiseMax(p1).cwiseMax(p2);
+  }
+  // light bounces between bright surfaces: a room of 0.9 albedo is 1 / (1 - 0.9) = 10 times as
+  // bright as the direct light, one of 0.5 twice. The flux is scaled by (1 - rho) / (1 - 0.5),
+  // rho the scene's area-weighted albedo (textures by their mean), so that both expose alike.
+  double weighted = 0.0, total = 0.0;
+  std::map<std::string, double> texture_mean;
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    if (scene.objects[o].material < 0 || !(area[o] > 0)) continue;
+    weighted += area[o] * albedoLuminance(scene.materials[scene.objects[o].material], texture_mean);
+    total += area[o];
+  }
+  report.mean_albedo = total > 0 ? weighted / total : 0.5;
+  const double bounce = std::clamp((1.0 - report.mean_albedo) / 0.5, 0.2, 2.0);
+  for (Space& s : a.spaces) {
+    s.flux = opt.flux_per_m2 * bounce * s.area;
+    report.space_area_m2 += s.area;
   }
   const int lamp = *nyu40FromName("lamp");
   std::vector<int> lum_space;  // per luminaire object index in `lums`
@@ -325,7 +426,7 @@ AutoLightReport addAutoLights(Scene& scene, const AutoLightOptions& opt) {
     Object& obj = scene.objects[lums[k]];
     const int s = lum_space[k];
     const double flux = s >= 0 ? a.spaces[s].flux / a.spaces[s].luminaires
-                               : opt.flux_per_m2 * opt.area_per_light_m2;
+                               : opt.flux_per_m2 * bounce * opt.area_per_light_m2;
     const double radiance = std::clamp(flux / (M_PI * area[lums[k]]), 0.5, 2000.0);
     Material m = obj.material >= 0 ? scene.materials[obj.material] : Material{};
     m.id = "auto_glow_" + obj.name;
@@ -383,7 +484,7 @@ AutoLightReport addAutoLights(Scene& scene, const AutoLightOptions& opt) {
       glass = glass || t == MaterialType::Dielectric || t == MaterialType::ThinDielectric;
     }
   if (glass || a.spaces.empty()) {
-    addDaylight(scene);
+    addDaylight(scene, !a.spaces.empty());
     report.daylight = true;
   }
   return report;

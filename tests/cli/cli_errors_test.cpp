@@ -205,12 +205,18 @@ TEST(Cli, LayoutImportWritesALoadableLayout) {
   // the same objects, classes and bounds whether read from the OBJ or from the written layout
   auto tail = [](const std::string& s) { return s.substr(s.find("meshes")); };
   EXPECT_EQ(tail(show.out), tail(orig.out));
-  // no --out, or an --out in a missing folder: a one-line error, nothing written
+  // an --out in a folder that does not exist yet: made, as generate --out makes its folder
+  RunResult nested = runInterinet("layout import --scene " + obj + " --out " +
+                                  (dir / "new" / "sub" / "x.json").string());
+  EXPECT_EQ(nested.exit_code, 0) << nested.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "new" / "sub" / "x.json"));
+  // an --out under a file, which cannot be a folder: a one-line error, nothing written
+  writeFile(dir / "plain", "a file\n");
   RunResult bad = runInterinet("layout import --scene " + obj + " --out " +
-                               (dir / "no" / "such" / "x.json").string());
+                               (dir / "plain" / "x.json").string());
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--out"), std::string::npos) << bad.err;
-  EXPECT_FALSE(std::filesystem::exists(dir / "no"));
+  EXPECT_EQ(readTextFile((dir / "plain").string()), "a file\n");
 }
 
 }  // namespace

@@ -141,6 +141,12 @@ TEST(RealScenes, ADarkSceneIsAnErrorUnlessAllowed) {
   const RunResult lit = runInterinet(args);
   EXPECT_EQ(lit.exit_code, 0) << lit.err;
   EXPECT_GE(statsOf(dir / "out" / "bedroom9_layout" / "seq_000").cam0_mean, kCam0Floor);
+  EXPECT_EQ(lit.err.find("over-exposed"), std::string::npos) << lit.err;
+  // and the other way to lose the picture: mostly white, which is said with the cure
+  fs::remove_all(dir / "out");
+  const RunResult white = runInterinet(args + "--exposure-ev 6");
+  EXPECT_EQ(white.exit_code, 0) << white.err;
+  EXPECT_NE(white.err.find("over-exposed); --exposure-ev"), std::string::npos) << white.err;
 }
 
 }  // namespace

@@ -387,7 +387,7 @@ std::vector<BadLayout> meshCases() {
       {"malformed_obj", edited([&](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"file", fixture_dir + "malformed.obj"}};
        }),
-       "meshes[0].file", "vertex index out of range"},
+       "meshes[0].file", "line 6: face vertex index 9"},
       {"mesh_name_not_in_file", edited([&](json& j) {
          j["meshes"][0] = {
              {"id", "box"}, {"file", fixture_dir + "two_parts.obj"}, {"mesh_name", "sofa"}};

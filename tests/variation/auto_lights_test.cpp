@@ -91,7 +91,10 @@ TEST(AutoLights, AClosedRoomGetsCeilingPanelsWithTheFluxItsFloorNeeds) {
   EXPECT_NEAR(r.space_area_m2, 24.0, 1.5);  // the free floor, to a voxel at the walls
   EXPECT_EQ(r.ceiling_panels, 3u);          // round(24 / 9)
   EXPECT_FALSE(r.daylight);
-  EXPECT_NEAR(emittedPower(s), opt.flux_per_m2 * r.space_area_m2, 1e-3 * emittedPower(s));
+  // the room is of albedo 0.8 everywhere: its light bounces 1 / (1 - 0.8) times, so the flux
+  // is (1 - 0.8) / 0.5 = 0.4 of 5 W per m^2 of floor
+  EXPECT_NEAR(r.mean_albedo, 0.8, 1e-6);
+  EXPECT_NEAR(emittedPower(s), opt.flux_per_m2 * 0.4 * r.space_area_m2, 1e-3 * emittedPower(s));
   std::set<int> instances;
   for (const Object& o : s.objects) EXPECT_TRUE(instances.insert(o.instance).second);
   for (size_t k = 1; k < s.objects.size(); ++k) {
@@ -122,6 +125,24 @@ TEST(AutoLights, ADoorwaysLintelSeparatesTwoRooms) {
   EXPECT_EQ(left, 2);
 }
 
+TEST(AutoLights, NoLightInsideAClosedWardrobe) {
+  // a closed 1.2 x 1.2 x 2.1 m box in a 4 x 4 x 2.5 m room: its inside has floor-to-top runs
+  // of 2 m, but it is 3 m^3 shut off from the room
+  Scene s = room(4, 4, 2.5);
+  Mesh wardrobe;
+  appendBox(wardrobe, {0.8, 0.8, 1.05}, {1.2, 1.2, 2.1});
+  wardrobe.id = "wardrobe";
+  s.meshes.push_back(wardrobe);
+  s.objects.push_back(Object::make("wardrobe", 1, 0, Mat4::Identity(), id("cabinet"), 2));
+  const AutoLightReport r = addAutoLights(s);
+  EXPECT_EQ(r.spaces, 1u);
+  for (const Object& o : s.objects)
+    if (o.nyu40 == id("lamp"))
+      EXPECT_FALSE(o.T_world_object(0, 3) < 1.4 && o.T_world_object(1, 3) < 1.4 &&
+                   o.T_world_object(2, 3) < 2.2)
+          << "a panel inside the wardrobe";
+}
+
 TEST(AutoLights, LampObjectsGlowInsteadOfPanels) {
   Scene s = room(6, 4, 2.7);
   Mesh fixture;
@@ -135,7 +156,7 @@ TEST(AutoLights, LampObjectsGlowInsteadOfPanels) {
   const Material& glow = s.materials[s.objects[1].material];
   EXPECT_TRUE(glow.isEmissive());
   EXPECT_EQ(s.materials[s.objects[0].material].emission, Vec3f::Zero()) << "walls stay dark";
-  EXPECT_NEAR(emittedPower(s), 5.0 * r.space_area_m2, 1e-3 * emittedPower(s));
+  EXPECT_NEAR(emittedPower(s), 5.0 * 0.4 * r.space_area_m2, 1e-3 * emittedPower(s));
   // the colour is 3500 K white
   const Vec3f c = glow.emission / luminance(glow.emission);
   EXPECT_LT((c - blackbodyRgb(3500)).norm(), 1e-4);
@@ -149,6 +170,18 @@ TEST(AutoLights, AnOpenSceneGetsDaylight) {
   ASSERT_EQ(s.lights.size(), 2u);
   EXPECT_EQ(s.lights[0].type, LightType::Sky);
   EXPECT_EQ(s.lights[1].type, LightType::Sun);
+}
+
+TEST(AutoLights, ADarkerRoomGetsMoreLight) {
+  // albedo 0.3: bounces 1 / 0.7 times, so 1.4 times 5 W/m^2 (and 0.9 would get the floor of 0.2)
+  Scene dark = room(6, 4, 2.7);
+  dark.materials[0].albedo = Vec3f::Constant(0.3f);
+  const AutoLightReport r = addAutoLights(dark);
+  EXPECT_NEAR(emittedPower(dark), 5.0 * 1.4 * r.space_area_m2, 1e-3 * emittedPower(dark));
+  Scene white = room(6, 4, 2.7);
+  white.materials[0].albedo = Vec3f::Constant(0.95f);
+  const AutoLightReport w = addAutoLights(white);
+  EXPECT_NEAR(emittedPower(white), 5.0 * 0.2 * w.space_area_m2, 1e-3 * emittedPower(white));
 }
 
 TEST(AutoLights, ModesDecideWhenToAdd) {

@@ -1,0 +1,31 @@
+#pragma once
+// A pass over an OBJ file's text before Assimp reads it, for what real OBJ files do that
+// Assimp 5.2 gets wrong or reports badly (found on tinyobjloader's test models and others):
+//  - `v x y z w`: Assimp divides x, y and z by w (a rational curve's weight); for polygons the
+//    weight means nothing (tinyobjloader ignores it), so the 4th value is dropped and counted;
+//  - numbers written with a leading dot (`.5`, `-.25`): Assimp's parser misreads them and then
+//    fails with "vertex index out of range"; they are written `0.5`, `-0.25`;
+//  - a face index of 0 or beyond the vertices read so far: Assimp says "Invalid face index" or
+//    "OBJ-file is too small" with no line; here it is an InputError naming the line;
+//  - `mtllib` files that do not exist: Assimp falls back to a grey default silently; they are
+//    listed, with the materials that get the default.
+// The text is only rewritten when something above needs it; Assimp then reads the rewritten
+// text in place of the file (ObjPrepass::text), and every other file (MTL, textures) as usual.
+#include <string>
+#include <vector>
+
+namespace inet {
+
+struct ObjPrepass {
+  std::string text;      ///< the rewritten file text; empty when the file needs no rewrite
+  size_t w_values = 0;   ///< `v` lines whose 4th value (w) was dropped
+  size_t leading_dots = 0;                   ///< numbers given a leading 0
+  std::vector<std::string> missing_mtllibs;  ///< as written in the file
+  std::vector<std::string> grey_materials;   ///< `usemtl` names no readable library defines
+};
+
+/// Reads `path` (an OBJ file) and checks it as above. InputError(path, "line N", ...) for a
+/// face index that cannot be right.
+ObjPrepass prepassObj(const std::string& path);
+
+}  // namespace inet
