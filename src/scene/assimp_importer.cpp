@@ -21,6 +21,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/image_io.h"
 #include "core/rng.h"
 #include "scene/label_map.h"
@@ -496,22 +497,12 @@ struct SceneBuilder {
 }  // namespace
 
 std::string ImportReport::summary(const std::string& default_category) const {
-  auto listed = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (size_t i = 0; i < v.size() && i < 8; ++i) s += (i ? ", " : "") + v[i];
-    if (v.size() > 8) s += fmt::format(", ... ({} more)", v.size() - 8);
-    return s;
-  };
   std::vector<std::string> parts;
   if (unmatched_objects > 0) {
-    std::string names;
-    const size_t shown = std::min<size_t>(unmatched_names.size(), 10);
-    for (size_t i = 0; i < shown; ++i) names += (i ? ", " : "") + unmatched_names[i];
-    if (unmatched_names.size() > shown)
-      names += fmt::format(", ... ({} more)", unmatched_names.size() - shown);
     parts.push_back(fmt::format(
         "{} object(s) ({} distinct name(s)) matched no label and were labelled '{}': {}",
-        unmatched_objects, unmatched_names.size(), default_category, names));
+        unmatched_objects, unmatched_names.size(), default_category,
+        listNames(unmatched_names, 10)));
   }
   if (dropped_faces > 0)
     parts.push_back(
@@ -525,18 +516,18 @@ std::string ImportReport::summary(const std::string& default_category) const {
     parts.push_back(fmt::format(
         "{} texture(s) were missing, an empty folder or an unreadable embedded image and were "
         "skipped ({})",
-        skipped_textures, listed(missing_textures)));
+        skipped_textures, listNames(missing_textures)));
   if (ignored_bump_maps > 0)
     parts.push_back(fmt::format(
         "{} material(s) have a bump (height) map, which is not supported and was ignored",
         ignored_bump_maps));
   if (!missing_mtllibs.empty())
     parts.push_back(fmt::format("material library {} not found next to the file",
-                                listed(missing_mtllibs)));
+                                listNames(missing_mtllibs)));
   if (!grey_materials.empty())
     parts.push_back(fmt::format("{} material(s) defined in no material library get a default "
                                 "grey ({})",
-                                grey_materials.size(), listed(grey_materials)));
+                                grey_materials.size(), listNames(grey_materials)));
   if (obj_w_values > 0)
     parts.push_back(fmt::format("{} vertex line(s) have a 4th (w) value, ignored as for "
                                 "polygons it means nothing (Assimp would divide by it)",
@@ -555,9 +546,7 @@ std::string ImportReport::summary(const std::string& default_category) const {
         "ceiling objects of their own (docs/import.md)",
         split_shells));
   if (!ka_emission_materials.empty()) {
-    std::string names;
-    for (size_t i = 0; i < ka_emission_materials.size() && i < 10; ++i)
-      names += (i ? ", " : "") + ka_emission_materials[i];
+    const std::string names = listNames(ka_emission_materials, 10);
     parts.push_back(fmt::format(
         "{} material(s) have no emission (Ke) but an ambient colour (Ka) above 1, which no "
         "reflectance can be: Ka is taken as their emitted radiance ({}); give them Ke to say "

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "scene/assimp_importer.h"
 #include "scene/label_map.h"
 #include "scene/mitsuba_materials.h"
@@ -612,14 +613,10 @@ void Importer::addSensor(const Plugin& s) {
 std::string MitsubaReport::summary(const std::string& default_category) const {
   std::vector<std::string> parts;
   if (unmatched_objects > 0) {
-    std::string names;
-    const size_t shown = std::min<size_t>(unmatched_names.size(), 10);
-    for (size_t i = 0; i < shown; ++i) names += (i ? ", " : "") + unmatched_names[i];
-    if (unmatched_names.size() > shown)
-      names += fmt::format(", ... ({} more)", unmatched_names.size() - shown);
     parts.push_back(fmt::format(
         "{} shape(s) ({} distinct name(s)) matched no label and were labelled '{}': {}",
-        unmatched_objects, unmatched_names.size(), default_category, names));
+        unmatched_objects, unmatched_names.size(), default_category,
+        listNames(unmatched_names, 10)));
   }
   parts.insert(parts.end(), approximations.begin(), approximations.end());
   std::string out;

@@ -8,24 +8,12 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace fs = std::filesystem;
 
 namespace inet {
 namespace {
-
-std::vector<std::string> splitSpaces(const std::string& s) {
-  std::vector<std::string> out;
-  size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
-    size_t j = i;
-    while (j < s.size() && s[j] != ' ' && s[j] != '\t') ++j;
-    if (j > i) out.push_back(s.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
 
 std::vector<std::string> splitLines(const std::string& text) {
   std::vector<std::string> out;
@@ -92,7 +80,7 @@ ObjPrepass prepassObj(const std::string& path) {
     ++line_no;
     const bool cr = !line.empty() && line.back() == '\r';
     if (cr) line.pop_back();
-    std::vector<std::string> tok = splitSpaces(line);
+    std::vector<std::string> tok = splitWhitespace(line);
     bool changed = false;
     if (!tok.empty()) {
       const std::string& key = tok[0];
@@ -143,14 +131,14 @@ ObjPrepass prepassObj(const std::string& path) {
     if (fs::is_regular_file(dir / lib, ec)) {
       files.push_back(dir / lib);
     } else {
-      for (const std::string& part : splitSpaces(lib))
+      for (const std::string& part : splitWhitespace(lib))
         if (fs::is_regular_file(dir / part, ec)) files.push_back(dir / part);
       if (files.empty()) out.missing_mtllibs.push_back(lib);
     }
     for (const fs::path& f : files) {
       any_library = true;
       for (const std::string& l : splitLines(readTextFile(f))) {
-        const std::vector<std::string> t = splitSpaces(l);
+        const std::vector<std::string> t = splitWhitespace(l);
         if (t.size() > 1 && t[0] == "newmtl") defined.insert(t[1]);
       }
     }

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace inet {
 namespace {
@@ -85,19 +86,6 @@ void forEachDataLine(const std::string& text, bool header, TrajectoryReadReport*
     }
     fn(line, line_no);
   }
-}
-
-std::vector<std::string> splitWhitespace(const std::string& line) {
-  std::vector<std::string> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
 }
 
 /// Comma-separated fields with surrounding spaces removed (EuRoC writes ", " in its header).

@@ -14,6 +14,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/image_io.h"
 #include "scene/nyu40.h"
 #include "scene/occupancy.h"
@@ -347,11 +348,8 @@ std::string AutoLightReport::summary() const {
   if (luminaires.empty() && ceiling_panels == 0 && !daylight) return "";
   std::vector<std::string> parts;
   if (!luminaires.empty()) {
-    std::string names;
-    for (size_t i = 0; i < luminaires.size() && i < 6; ++i)
-      names += (i ? ", " : "") + luminaires[i];
-    if (luminaires.size() > 6) names += fmt::format(", ... ({} more)", luminaires.size() - 6);
-    parts.push_back(fmt::format("{} lamp object(s) made to glow ({})", luminaires.size(), names));
+    parts.push_back(fmt::format("{} lamp object(s) made to glow ({})", luminaires.size(),
+                                listNames(luminaires, 6)));
   }
   if (ceiling_panels > 0)
     parts.push_back(fmt::format("{} ceiling light(s) added", ceiling_panels));

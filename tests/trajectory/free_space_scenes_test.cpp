@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "../box_mesh.h"
 #include "scene/primitives.h"
 #include "trajectory/free_space.h"
 #include "trajectory/random_trajectory.h"
@@ -14,14 +15,7 @@
 namespace inet {
 namespace {
 
-/// Appends an axis-aligned box (centre, size) to `m`, outward winding.
-void appendBox(Mesh& m, const Vec3& centre, const Vec3& size) {
-  const Mesh unit = makePrimitive("box", {}, "", "");
-  const uint32_t base = static_cast<uint32_t>(m.positions.size());
-  for (const Vec3f& p : unit.positions)
-    m.positions.push_back((centre + p.cast<double>().cwiseProduct(size)).cast<float>());
-  for (const Tri& t : unit.triangles) m.triangles.push_back(t + Tri::Constant(base));
-}
+using test::appendBox;
 
 /// A room shell: floor and ceiling slabs and four walls 0.2 m thick around [0, w] x [0, d],
 /// floor top at z0, ceiling underside at z0 + h. `holes` cuts two 1.5 x 1.2 m window openings

@@ -11,6 +11,7 @@
 #include "core/color.h"
 #include "render/renderer.h"
 #include "scene/nyu40.h"
+#include "../box_mesh.h"
 #include "scene/primitives.h"
 
 namespace inet {
@@ -20,14 +21,7 @@ int id(const char* name) {
   return *nyu40FromName(name);
 }
 
-/// Appends an axis-aligned box (centre, size) to `m`.
-void appendBox(Mesh& m, const Vec3& c, const Vec3& size) {
-  const Mesh unit = makePrimitive("box", {}, "", "");
-  const uint32_t base = static_cast<uint32_t>(m.positions.size());
-  for (const Vec3f& p : unit.positions)
-    m.positions.push_back((c + p.cast<double>().cwiseProduct(size)).cast<float>());
-  for (const Tri& t : unit.triangles) m.triangles.push_back(t + Tri::Constant(base));
-}
+using test::appendBox;
 
 /// A room [0, w] x [0, d], floor at 0, ceiling at h, 0.2 m walls and slabs; `partition` adds a
 /// wall at x = w / 2 with a 0.9 x 2.0 m doorway; `ceiling` false leaves it open to the sky.

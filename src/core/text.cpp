@@ -1,0 +1,27 @@
+#include "core/text.h"
+
+#include <fmt/format.h>
+
+namespace inet {
+
+std::vector<std::string> splitWhitespace(const std::string& line) {
+  std::vector<std::string> out;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+std::string listNames(const std::vector<std::string>& names, size_t most) {
+  std::string s;
+  for (size_t i = 0; i < names.size() && i < most; ++i) s += (i ? ", " : "") + names[i];
+  if (names.size() > most) s += fmt::format(", ... ({} more)", names.size() - most);
+  return s;
+}
+
+}  // namespace inet

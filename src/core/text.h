@@ -1,0 +1,15 @@
+#pragma once
+// Small text helpers for readers and messages.
+#include <string>
+#include <vector>
+
+namespace inet {
+
+/// The fields of `line` between runs of spaces and tabs.
+std::vector<std::string> splitWhitespace(const std::string& line);
+
+/// "a, b, c" of the first `most` names, then ", ... (N more)": one warning line names what it
+/// counts without growing with the file.
+std::string listNames(const std::vector<std::string>& names, size_t most = 8);
+
+}  // namespace inet
