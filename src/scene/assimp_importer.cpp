@@ -535,6 +535,11 @@ std::string ImportReport::summary(const std::string& default_category) const {
   if (obj_leading_dots > 0)
     parts.push_back(fmt::format("{} number(s) written with a leading dot (.5) were read as 0.5",
                                 obj_leading_dots));
+  if (obj_late_groups > 0)
+    parts.push_back(fmt::format(
+        "{} group name(s) come after their faces (`usemtl NAME`, faces, then `g NAME`, as in "
+        "McGuire's archive): those faces were given the group NAME",
+        obj_late_groups));
   if (extent_m > 200.0)
     parts.push_back(fmt::format(
         "the scene is {:.0f} m across: if its unit is not the metre, give --scale (0.01 for "
@@ -642,6 +647,7 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   SceneBuilder builder(importer->GetScene(), path, opt, labels, *default_id);
   builder.report.obj_w_values = prepass.w_values;
   builder.report.obj_leading_dots = prepass.leading_dots;
+  builder.report.obj_late_groups = prepass.late_groups;
   builder.report.missing_mtllibs = prepass.missing_mtllibs;
   builder.report.grey_materials = prepass.grey_materials;
   walkNodes(importer->GetScene()->mRootNode, Mat4::Identity(),

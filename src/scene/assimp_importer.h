@@ -50,6 +50,7 @@ struct ImportReport {
   // OBJ files (scene/obj_prepass.h): what Assimp would have got wrong or said nothing about
   size_t obj_w_values = 0;                    ///< `v x y z w` lines whose w was dropped
   size_t obj_leading_dots = 0;                ///< numbers like `.5` read as 0.5
+  size_t obj_late_groups = 0;  ///< groups named after their faces (ObjPrepass::late_groups)
   std::vector<std::string> missing_mtllibs;   ///< `mtllib` files not found
   std::vector<std::string> grey_materials;    ///< `usemtl` names no library defines
   double extent_m = 0.0;   ///< largest side of the scene's bounds (a hint for a wrong --scale)

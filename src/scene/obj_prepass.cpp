@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include <fmt/format.h>
@@ -68,6 +69,17 @@ ObjPrepass prepassObj(const std::string& path) {
   std::vector<std::string> libs;
   std::vector<std::string> used;
   std::set<std::string> used_seen;
+  // the last line that declares each group name (`g NAME`; `o NAME` too, as Assimp reads it)
+  std::map<std::string, int> last_declared;
+  {
+    int n = 0;
+    for (const std::string& l : splitLines(text)) {
+      ++n;
+      const std::vector<std::string> t = splitWhitespace(l);
+      if (t.size() == 2 && (t[0] == "g" || t[0] == "o")) last_declared[t[1]] = n;
+    }
+  }
+  std::string group;  // the current group's name
   size_t pos = 0;
   int line_no = 0;
   while (pos < text.size()) {
@@ -108,8 +120,17 @@ ObjPrepass prepassObj(const std::string& path) {
         libs.push_back(line.substr(line.find("mtllib") + 6));
         const size_t f = libs.back().find_first_not_of(" \t");
         libs.back() = f == std::string::npos ? "" : libs.back().substr(f);
-      } else if (key == "usemtl" && tok.size() > 1 && used_seen.insert(tok[1]).second) {
-        used.push_back(tok[1]);
+      } else if (key == "g" || key == "o") {
+        group = tok.size() == 2 ? tok[1] : "";
+      } else if (key == "usemtl" && tok.size() > 1) {
+        if (used_seen.insert(tok[1]).second) used.push_back(tok[1]);
+        const auto later = last_declared.find(tok[1]);
+        if (tok.size() == 2 && group != tok[1] && later != last_declared.end() &&
+            later->second > line_no) {
+          rewritten += "g " + tok[1] + (cr ? "\r" : "") + (eol.empty() ? "\n" : eol);
+          group = tok[1];
+          ++out.late_groups;
+        }
       }
     }
     if (changed) {
@@ -120,7 +141,7 @@ ObjPrepass prepassObj(const std::string& path) {
       rewritten += line + (cr ? "\r" : "") + eol;
     }
   }
-  if (out.w_values > 0 || out.leading_dots > 0) out.text = std::move(rewritten);
+  if (out.w_values > 0 || out.leading_dots > 0 || out.late_groups > 0) out.text = std::move(rewritten);
   // material libraries: a name with spaces is one file or several (tinyobjloader reads both)
   std::set<std::string> defined;
   const fs::path dir = fs::path(path).parent_path();

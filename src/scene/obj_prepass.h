@@ -8,7 +8,14 @@
 //  - a face index of 0 or beyond the vertices read so far: Assimp says "Invalid face index" or
 //    "OBJ-file is too small" with no line; here it is an InputError naming the line;
 //  - `mtllib` files that do not exist: Assimp falls back to a grey default silently; they are
-//    listed, with the materials that get the default.
+//    listed, with the materials that get the default;
+//  - group names written after their faces: McGuire's Computer Graphics Archive files (the
+//    Cornell box in ../shared) start each object with `usemtl shortBox`, its faces, and only
+//    then `g shortBox`, so the faces fall into the group before (the short box was a wall). A
+//    `usemtl NAME` inside a group of another name, where a group NAME is declared later in the
+//    file, starts that group there (a `g NAME` line is put before it) and is counted. A file
+//    that truly puts material M's faces in group G and declares a group M later is read the
+//    same way: rare, and said in the import report.
 // The text is only rewritten when something above needs it; Assimp then reads the rewritten
 // text in place of the file (ObjPrepass::text), and every other file (MTL, textures) as usual.
 #include <string>
@@ -20,6 +27,7 @@ struct ObjPrepass {
   std::string text;      ///< the rewritten file text; empty when the file needs no rewrite
   size_t w_values = 0;   ///< `v` lines whose 4th value (w) was dropped
   size_t leading_dots = 0;                   ///< numbers given a leading 0
+  size_t late_groups = 0;  ///< `g NAME` lines put before faces whose group is declared later
   std::vector<std::string> missing_mtllibs;  ///< as written in the file
   std::vector<std::string> grey_materials;   ///< `usemtl` names no readable library defines
 };

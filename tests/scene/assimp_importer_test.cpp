@@ -547,6 +547,44 @@ TEST(AssimpImporter, ObjQuirksOfRealFiles) {
   }
 }
 
+// McGuire's archive names each group after its faces (`usemtl shortBox`, the faces, then
+// `g shortBox`): before, the short box's faces fell into the group before them and the short
+// box was labelled wall. Files in the usual order are not touched.
+TEST(AssimpImporter, GroupNamesWrittenAfterTheirFaces) {
+  TempDir tmp;
+  ImportReport report;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 0 1\n";  // upright: not a floor
+  const Scene late = importMeshScene(
+      tmp.write("late.obj", tri + "g leftWall\nusemtl leftWall\nf 1 2 3\n"
+                                  "usemtl shortBox\nf 1 3 2\ng shortBox\nusemtl shortBox\n"
+                                  "usemtl door\nf 1 2 3\ng door\nusemtl door\n"),
+      {}, &report);
+  EXPECT_EQ(report.obj_late_groups, 2u);
+  EXPECT_NE(report.summary("otherprop").find("after their faces"), std::string::npos);
+  ASSERT_GE(findObject(late, "shortBox"), 0);
+  EXPECT_EQ(late.objects[findObject(late, "shortBox")].nyu40, id("box"));
+  ASSERT_GE(findObject(late, "door"), 0);
+  EXPECT_EQ(late.objects[findObject(late, "door")].nyu40, id("door"));
+  for (const Object& o : late.objects)
+    if (o.name == "leftWall") EXPECT_EQ(o.nyu40, id("wall"));
+  // the usual order, and a material named after no group: nothing moves
+  importMeshScene(tmp.write("usual.obj", tri + "g leftWall\nusemtl leftWall\nf 1 2 3\n"
+                                         "g shortBox\nusemtl shortBox\nf 1 3 2\n"
+                                         "g chair\nusemtl wood\nf 1 2 3\n"),
+                  {}, &report);
+  EXPECT_EQ(report.obj_late_groups, 0u);
+  // the real file, when ../shared is here: both boxes are boxes, five walls/floor/ceiling
+  const auto cornell =
+      test::sharedDir() / "data" / "scenes" / "cornell_box_mcguire" / "CornellBox-Original.obj";
+  if (!std::filesystem::exists(cornell)) GTEST_SKIP() << cornell << " not found (../shared)";
+  const Scene real = importMeshScene(cornell.string(), {}, &report);
+  std::set<int> boxes;
+  for (const Object& o : real.objects)
+    if (o.nyu40 == id("box")) boxes.insert(o.instance);
+    else EXPECT_NE(o.material >= 0 ? real.materials[o.material].id : "", "shortBox") << o.name;
+  EXPECT_EQ(boxes.size(), 2u);
+}
+
 std::string base64(const std::string& bytes) {
   static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
