@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -32,6 +33,7 @@
 #include "trajectory/builtin_trajectory.h"
 #include "trajectory/formats.h"
 #include "trajectory/free_space.h"
+#include "trajectory/place_path.h"
 #include "trajectory/random_trajectory.h"
 #include "variation/lighting.h"
 #include "variation/rearrange.h"
@@ -68,6 +70,7 @@ struct GenerateArgs {
   LensArgs lens;
   bool hdr = false;
   bool allow_dark = false;
+  bool place_trajectory = false;
   ResponseArgs response;
   CameraIntrinsics K;
   bool width_set = false, height_set = false, fx_set = false, fy_set = false;
@@ -89,10 +92,44 @@ struct CameraPath {
   Trajectory frames;
   Trajectory path;
   std::string description;  ///< for meta.json
+  bool leaves_scene = false;  ///< a file's path with cameras outside the scene or in its geometry
 };
 
 bool isMotionType(const std::string& s) {
   return s == "two-body" || s == "hand-held" || s == "look-forward";
+}
+
+/// A camera path from a file is used as it is, in the scene's world frame (Z up, metres). A
+/// path whose cameras sit outside the building or inside its geometry renders the outside of
+/// walls or the inside of a slab, which looks like a lighting or import fault: a motion-capture
+/// path (TUM, EuRoC) has the origin of its own room. Said once, with both extents, before
+/// anything is rendered; not an error (a path from outside may be meant).
+bool warnIfOutsideScene(const Trajectory& frames, const FreeSpace& space, const Scene& scene,
+                        const GenerateArgs& a) {
+  if (frames.poses.empty()) return false;
+  size_t outside = 0, in_geometry = 0;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const TimedPose& p : frames.poses) {
+    const Vec3 c = p.T_world_camera.t;
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+    if (!space.isIndoors(c))
+      ++outside;
+    else if (space.exactDistance(c) < 0.02 || space.lowerBound(c) < -1.9 * space.voxel())
+      ++in_geometry;  // at a surface, or deep in an occupied region (a wall's inside)
+  }
+  if (outside + in_geometry == 0) return false;
+  const auto [slo, shi] = scene.bounds();
+  std::fprintf(stderr,
+               "warning: %s: %zu of %zu camera positions are outside the scene's indoor space "
+               "and %zu inside or touching its geometry: the path spans x [%.2f, %.2f] y [%.2f, "
+               "%.2f] z [%.2f, %.2f] m, the scene x [%.2f, %.2f] y [%.2f, %.2f] z [%.2f, %.2f] "
+               "m (a file's poses are used as they are, in the scene's frame: Z up, metres; "
+               "--place-trajectory moves the path into the scene)\n",
+               a.trajectory.c_str(), outside, frames.poses.size(), in_geometry, lo.x(), hi.x(),
+               lo.y(), hi.y(), lo.z(), hi.z(), slo.x(), shi.x(), slo.y(), shi.y(), slo.z(),
+               shi.z());
+  return true;
 }
 
 CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
@@ -130,13 +167,35 @@ CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
                                    out.frames.size()));
     out.frames.poses.resize(a.frames);
   }
-  out.path = out.frames;
   out.description = fs::path(a.trajectory).filename().string();
+  const FreeSpace space(scene, {}, a.scene.path);
+  if (a.place_trajectory) {
+    const PathPlacement placed = placePath(out.frames, space, {}, a.trajectory);
+    out.frames = transformed(out.frames, placed.T_scene_file);
+    const Vec3& t = placed.T_scene_file.t;
+    const std::string what = fmt::format(
+        "turned {:.1f} deg about z and moved by ({:.3f}, {:.3f}, {:.3f}) m: {:.0f} % of its poses "
+        "at least 0.1 m from the geometry (as given: {:.0f} %)",
+        placed.yaw_deg, t.x(), t.y(), t.z(), 100.0 * placed.free_after,
+        100.0 * placed.free_before);
+    if (placed.yaw_deg == 0.0 && t == Vec3::Zero()) {
+      std::fprintf(stderr, "%s: left where it is (%.0f %% of its poses at least 0.1 m from the "
+                   "geometry; no turn or shift does better)\n",
+                   a.trajectory.c_str(), 100.0 * placed.free_before);
+    } else {
+      std::fprintf(stderr, "%s: placed in the scene: %s\n", a.trajectory.c_str(), what.c_str());
+      out.description += ", placed: " + what;
+    }
+  }
+  out.leaves_scene = warnIfOutsideScene(out.frames, space, scene, a);
+  out.path = out.frames;
   return out;
 }
 
 void validateArgs(const GenerateArgs& a) {
   if (a.frames < 1) throw InputError("", "--frames", "must be >= 1");
+  if (a.place_trajectory && (a.trajectory.empty() || isMotionType(a.trajectory)))
+    throw InputError("", "--place-trajectory", "needs a camera path file: --trajectory FILE");
   if (!(a.fps > 0 && a.fps <= 10000)) throw InputError("", "--fps", "must be in (0, 10000]");
   if (!(a.imu_rate >= 0 && a.imu_rate <= 100000))
     throw InputError("", "--imu", "must be in 0..100000 Hz");
@@ -393,7 +452,8 @@ void runGenerate(const GenerateArgs& a) {
 constexpr double kDarkFloor = 1e-3;
 
 void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensModel& lens,
-                  const Trajectory& traj, const RenderOptions& opt, const std::string& where) {
+                  const Trajectory& traj, const RenderOptions& opt, const std::string& where,
+                  bool path_leaves_scene) {
   CameraIntrinsics K = lens.K;
   const double s = 80.0 / K.width;
   K = CameraIntrinsics{80, std::max(1, static_cast<int>(std::lround(K.height * s))), K.fx * s,
@@ -427,10 +487,14 @@ void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensMod
   if (mean < kDarkFloor)
     throw InputError(where, "--allow-dark",
                      fmt::format("the colour frames are essentially black (mean brightness {:.1e} "
-                                 "of white over 5 previewed poses): nothing lights what the "
-                                 "camera sees; add lights (--auto-lights on, --lights "
-                                 "light.xml), raise --exposure-ev, or pass --allow-dark",
-                                 mean));
+                                 "of white over 5 previewed poses): {}, or pass --allow-dark",
+                                 mean,
+                                 path_leaves_scene
+                                     ? "the camera path leaves the scene (warned above): move "
+                                       "the path into it (--place-trajectory)"
+                                     : "nothing lights what the camera sees; add lights "
+                                       "(--auto-lights on, --lights light.xml), raise "
+                                       "--exposure-ev"));
   // the other way to lose the picture: most of it clipped at white (an open scene in full sun)
   const size_t clipped = std::count_if(peaks.begin(), peaks.end(), [](float v) { return v >= 1.f; });
   if (clipped * 4 >= peaks.size()) {
@@ -469,7 +533,8 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   if (want.events) spec.meta["events"] = event_opt.sim.toString();
   Renderer renderer(scene, opt.integrator);
   if (has(passes, Pass::Rgb) && !a.allow_dark)
-    checkNotDark(a, renderer, lens, traj, opt, a.scene.path.empty() ? "built-in room" : a.scene.path);
+    checkNotDark(a, renderer, lens, traj, opt, a.scene.path.empty() ? "built-in room" : a.scene.path,
+                 cam.leaves_scene);
   SequenceWriter writer(spec, traj, formats);
 
   if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
@@ -642,6 +707,11 @@ void registerGenerate(CLI::App& app) {
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "
                 "written); without it that is an error");
+  cmd->add_flag("--place-trajectory", a->place_trajectory,
+                "move a --trajectory FILE into the scene: the turn about z and horizontal shift "
+                "(heights above the floor kept) that put the most of its poses 0.1 m from the "
+                "geometry, for a motion-capture path (TUM, EuRoC) recorded in another room; said "
+                "on stderr and in meta.json, and the ground truth is the moved path");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");
   cmd->callback([a] { runGenerate(*a); });
 }

@@ -3,6 +3,7 @@
 #include <pugixml.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -13,6 +14,8 @@
 
 namespace inet {
 namespace {
+
+namespace fs = std::filesystem;
 
 const char* typeName(const Light& l) {
   switch (l.type) {
@@ -65,13 +68,19 @@ class Attrs {
       fail(name, "expected a finite number, got '" + t + "'");
     return v;
   }
-  Vec3 vec3(const char* name) const {
+  /// `n` finite numbers separated by spaces; `what` says which, for the error.
+  std::vector<double> numbers(const char* name, size_t n, const char* what) const {
     std::istringstream in(text(name));
-    Vec3 v;
+    std::vector<double> v(n);
     std::string extra;
-    if (!(in >> v.x() >> v.y() >> v.z()) || (in >> extra) || !v.allFinite())
-      fail(name, "expected three finite numbers 'x y z'");
+    for (double& x : v)
+      if (!(in >> x) || !std::isfinite(x)) fail(name, what);
+    if (in >> extra) fail(name, what);
     return v;
+  }
+  Vec3 vec3(const char* name) const {
+    const std::vector<double> v = numbers(name, 3, "expected three finite numbers 'x y z'");
+    return Vec3(v[0], v[1], v[2]);
   }
   bool flag(const char* name, bool fallback) const {
     if (!has(name)) return fallback;
@@ -126,6 +135,24 @@ void saveLightXml(const Scene& scene, const std::string& path) {
       if (l.sky_model == SkyModel::Preetham)
         out += fmt::format(" sun_direction=\"{}\" turbidity=\"{}\"", vec(l.direction),
                            num(l.turbidity));
+      if (l.sky_model == SkyModel::EnvMap) {
+        // the image relative to this file's folder (as layout.json keeps it), the rotation as
+        // 9 numbers, row by row
+        // (absolute when the two share no folder below the root: ../../../work/... says less)
+        std::error_code ec;
+        const fs::path image =
+            fs::absolute(l.envmap.path.empty() ? l.envmap.file : l.envmap.path).lexically_normal();
+        const fs::path here = fs::absolute(path).parent_path().lexically_normal();
+        fs::path rel = fs::proximate(image, here, ec);
+        const auto top = [](const fs::path& p) {
+          auto it = p.begin();
+          return it != p.end() && ++it != p.end() ? *it : fs::path();
+        };
+        if (ec || top(image) != top(here)) rel = image;
+        Eigen::Matrix<double, 9, 1> rows;
+        for (int i = 0; i < 3; ++i) rows.segment<3>(3 * i) = l.envmap_rotation.row(i).transpose();
+        out += fmt::format(" file=\"{}\" rotation=\"{}\"", rel.generic_string(), vec(rows));
+      }
     } else {
       out += fmt::format(" color=\"{}\" temperature_k=\"{}\"", vec(l.color), num(l.temperature_k));
     }
@@ -199,8 +226,23 @@ LightSetup loadLightXml(const std::string& path) {
         l.sky_model = SkyModel::Preetham;
         l.direction = a.vec3("sun_direction");
         l.turbidity = static_cast<float>(a.number("turbidity"));
+      } else if (model == "envmap") {
+        l.sky_model = SkyModel::EnvMap;
+        l.envmap.file = a.text("file");
+        const fs::path image = fs::path(path).parent_path() / l.envmap.file;
+        l.envmap.path = fs::path(l.envmap.file).is_absolute() ? l.envmap.file
+                                                               : image.lexically_normal().string();
+        std::error_code ec;
+        if (!fs::is_regular_file(l.envmap.path, ec))
+          a.fail("file", "no such image '" + l.envmap.path + "'");
+        if (a.has("rotation")) {
+          const std::vector<double> m =
+              a.numbers("rotation", 9, "expected 9 finite numbers (a 3x3 rotation, row by row)");
+          for (int i = 0; i < 3; ++i)
+            l.envmap_rotation.row(i) = Vec3(m[3 * i], m[3 * i + 1], m[3 * i + 2]).transpose();
+        }
       } else if (model != "uniform") {
-        a.fail("model", "unknown sky model '" + model + "' (valid: uniform, preetham)");
+        a.fail("model", "unknown sky model '" + model + "' (valid: uniform, preetham, envmap)");
       }
     } else {
       if (a.has("color")) l.color = a.vec3("color").cast<float>();

@@ -4,7 +4,9 @@
 // temperature, on/off, and the object each light belongs to, e.g. a lamp). Analytic lights are
 // <light type="PointLight|SpotLight|SunLight|SkyLight">; emissive objects (area lights) are
 // <light type="AreaLight" object="..." radiance="r g b">. Switching lights or recolouring them is
-// editing this file; `applyLightXml` puts a setup onto a scene.
+// editing this file; `applyLightXml` puts a setup onto a scene. A SkyLight's model is uniform,
+// preetham (sun_direction, turbidity) or envmap (file: the image, relative to the light.xml's
+// folder; rotation: 9 numbers, map frame -> world row by row; as layout.json's envmap sky).
 #include <string>
 #include <vector>
 

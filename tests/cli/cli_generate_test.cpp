@@ -485,5 +485,74 @@ TEST(Generate, SigtermStopsWith143AndARerunResumes) {
   EXPECT_EQ(filesIn(seqDir(out) / "cam0/data", ".png"), 30u);
 }
 
+// A trajectory file in another frame than the scene's (a motion-capture path has the origin of
+// its own room) rendered the outside of the walls, silently: now it is said, with both extents.
+// A path inside the room says nothing.
+TEST(Generate, AFilePathOutsideTheSceneIsWarnedAbout) {
+  TempDir dir("gen_outside");
+  const std::string small = "generate --width 32 --height 24 --fx 30 --fy 30 --spp 1 --frames 3 "
+                            "--passes rgb,depth --no-progress ";
+  RunResult first = runInterinet(small + "--out " + (dir / "a").string());
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::string inside = readTextFile((seqDir(dir / "a") / "groundtruth.txt").string());
+  std::string shifted;  // every position 50 m along x
+  std::istringstream lines(inside);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') {
+      shifted += line + "\n";
+      continue;
+    }
+    std::istringstream in(line);
+    std::string t;
+    double x;
+    in >> t >> x;
+    std::string rest;
+    std::getline(in, rest);
+    shifted += t + " " + std::to_string(x + 50.0) + rest + "\n";
+  }
+  writeFile(dir / "inside.txt", inside);
+  writeFile(dir / "outside.txt", shifted);
+  RunResult ok = runInterinet(small + "--trajectory " + (dir / "inside.txt").string() +
+                              " --out " + (dir / "b").string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(ok.err.find("camera positions"), std::string::npos) << ok.err;
+  // outside, it renders black: the dark frames' error says why
+  RunResult out = runInterinet(small + "--trajectory " + (dir / "outside.txt").string() +
+                               " --out " + (dir / "c").string());
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.err.find("essentially black"), std::string::npos) << out.err;
+  EXPECT_NE(out.err.find("the camera path leaves the scene (warned above)"), std::string::npos)
+      << out.err;
+  EXPECT_NE(out.err.find("outside.txt: 3 of 3 camera positions are outside the scene's indoor "
+                         "space"),
+            std::string::npos)
+      << out.err;
+  EXPECT_NE(out.err.find("the path spans x [5"), std::string::npos) << out.err;
+  EXPECT_FALSE(fs::exists(dir / "c" / "default_room" / "seq_000" / "cam0"));
+  // --place-trajectory moves it back into the room: no warning, a lit sequence, the moved path
+  // as ground truth
+  RunResult placed = runInterinet(small + "--trajectory " + (dir / "outside.txt").string() +
+                                  " --place-trajectory --out " + (dir / "d").string());
+  ASSERT_EQ(placed.exit_code, 0) << placed.err;
+  EXPECT_NE(placed.err.find("outside.txt: placed in the scene: turned"), std::string::npos)
+      << placed.err;
+  EXPECT_NE(placed.err.find("100 % of its poses at least 0.1 m from the geometry (as given: 0 %)"),
+            std::string::npos)
+      << placed.err;
+  EXPECT_EQ(placed.err.find("camera positions"), std::string::npos) << placed.err;
+  const std::string gt = readTextFile((seqDir(dir / "d") / "groundtruth.txt").string());
+  EXPECT_EQ(gt.find(" 5"), std::string::npos) << "no position left at x = 50 m: " << gt;
+  RunResult inside_placed = runInterinet(small + "--trajectory " + (dir / "inside.txt").string() +
+                                         " --place-trajectory --out " + (dir / "e").string());
+  ASSERT_EQ(inside_placed.exit_code, 0) << inside_placed.err;
+  EXPECT_NE(inside_placed.err.find("left where it is (100 %"), std::string::npos)
+      << inside_placed.err;
+  // it needs a file
+  RunResult no_file = runInterinet(small + "--place-trajectory --out " + (dir / "f").string());
+  EXPECT_EQ(no_file.exit_code, 2);
+  EXPECT_NE(no_file.err.find("--place-trajectory: needs a camera path file"), std::string::npos)
+      << no_file.err;
+}
+
 }  // namespace
 }  // namespace inet::test
