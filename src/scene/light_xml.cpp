@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -38,6 +39,26 @@ std::string num(double v) {
     if (std::stod(s) == v) return s;
   }
   return fmt::format("{:.17g}", v);
+}
+
+/// A name as an XML attribute value: & < > " and control characters escaped (pugixml reads
+/// them back), so a lamp called `Lamp "A" & co` makes a readable file.
+std::string attr(const std::string& v) {
+  std::string out;
+  for (char c : v) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default:  // a tab or line break would come back as a space (attribute normalisation)
+        if (static_cast<unsigned char>(c) < 0x20)
+          out += fmt::format("&#{};", static_cast<int>(c));
+        else
+          out += c;
+    }
+  }
+  return out;
 }
 
 template <class V>
@@ -82,6 +103,17 @@ class Attrs {
     const std::vector<double> v = numbers(name, 3, "expected three finite numbers 'x y z'");
     return Vec3(v[0], v[1], v[2]);
   }
+  /// A value kept as a float (energies, colours, angles): beyond float's range it would be
+  /// written back as inf, which no reader takes.
+  float single(const char* name, double v) const {
+    if (!(std::abs(v) <= std::numeric_limits<float>::max()))
+      fail(name, fmt::format("{} is beyond a 32-bit float's range", v));
+    return static_cast<float>(v);
+  }
+  float single(const char* name) const { return single(name, number(name)); }
+  Vec3f single3(const char* name, const Vec3& v) const {
+    return Vec3f(single(name, v.x()), single(name, v.y()), single(name, v.z()));
+  }
   bool flag(const char* name, bool fallback) const {
     if (!has(name)) return fallback;
     const std::string t = text(name);
@@ -122,13 +154,13 @@ LightSetup lightSetupOf(const Scene& scene) {
   return setup;
 }
 
-void saveLightXml(const Scene& scene, const std::string& path) {
+std::string lightXmlText(const Scene& scene, const std::string& path) {
   const LightSetup setup = lightSetupOf(scene);
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out += fmt::format("<lights layout=\"{}\" version=\"1\">\n", scene.name);
+  out += fmt::format("<lights layout=\"{}\" version=\"1\">\n", attr(scene.name));
   for (const Light& l : setup.lights) {
-    out += fmt::format("  <light name=\"{}\" type=\"{}\"", l.name, typeName(l));
-    if (!l.object.empty()) out += fmt::format(" object=\"{}\"", l.object);
+    out += fmt::format("  <light name=\"{}\" type=\"{}\"", attr(l.name), typeName(l));
+    if (!l.object.empty()) out += fmt::format(" object=\"{}\"", attr(l.object));
     out += fmt::format(" on=\"{}\" energy=\"{}\"", l.on ? "true" : "false", num(l.intensity));
     if (l.type == LightType::Sky) {
       out += fmt::format(" model=\"{}\"", skyModelName(l.sky_model));
@@ -151,7 +183,7 @@ void saveLightXml(const Scene& scene, const std::string& path) {
         if (ec || top(image) != top(here)) rel = image;
         Eigen::Matrix<double, 9, 1> rows;
         for (int i = 0; i < 3; ++i) rows.segment<3>(3 * i) = l.envmap_rotation.row(i).transpose();
-        out += fmt::format(" file=\"{}\" rotation=\"{}\"", rel.generic_string(), vec(rows));
+        out += fmt::format(" file=\"{}\" rotation=\"{}\"", attr(rel.generic_string()), vec(rows));
       }
     } else {
       out += fmt::format(" color=\"{}\" temperature_k=\"{}\"", vec(l.color), num(l.temperature_k));
@@ -170,13 +202,18 @@ void saveLightXml(const Scene& scene, const std::string& path) {
   }
   for (const AreaLightEntry& a : setup.areas)
     out += fmt::format("  <light type=\"AreaLight\" object=\"{}\" on=\"{}\" radiance=\"{}\"/>\n",
-                       a.object, a.on ? "true" : "false", vec(a.radiance));
+                       attr(a.object), a.on ? "true" : "false", vec(a.radiance));
   out += "</lights>\n";
-  writeTextAtomic(path, out);
+  return out;
 }
 
-LightSetup loadLightXml(const std::string& path) {
-  const std::string text = readTextFile(path);
+void saveLightXml(const Scene& scene, const std::string& path) {
+  writeTextAtomic(path, lightXmlText(scene, path));
+}
+
+LightSetup loadLightXml(const std::string& path) { return parseLightXml(readTextFile(path), path); }
+
+LightSetup parseLightXml(const std::string& text, const std::string& path) {
   pugi::xml_document doc;
   const pugi::xml_parse_result ok = doc.load_buffer(text.data(), text.size());
   if (!ok)
@@ -199,7 +236,7 @@ LightSetup loadLightXml(const std::string& path) {
       e.on = a.flag("on", true);
       const Vec3 r = a.vec3("radiance");
       if (r.minCoeff() < 0) a.fail("radiance", "must be >= 0");
-      e.radiance = (r * brightnessOf(a)).cast<float>();
+      e.radiance = a.single3("radiance", r * brightnessOf(a));
       setup.areas.push_back(e);
       continue;
     }
@@ -219,13 +256,13 @@ LightSetup loadLightXml(const std::string& path) {
     }
     if (a.has("object")) l.object = a.text("object");
     l.on = a.flag("on", true);
-    l.intensity = static_cast<float>(a.number("energy") * brightnessOf(a));
+    l.intensity = a.single("energy", a.number("energy") * brightnessOf(a));
     if (l.type == LightType::Sky) {
       const std::string model = a.has("model") ? a.text("model") : "uniform";
       if (model == "preetham") {
         l.sky_model = SkyModel::Preetham;
         l.direction = a.vec3("sun_direction");
-        l.turbidity = static_cast<float>(a.number("turbidity"));
+        l.turbidity = a.single("turbidity");
       } else if (model == "envmap") {
         l.sky_model = SkyModel::EnvMap;
         l.envmap.file = a.text("file");
@@ -245,20 +282,20 @@ LightSetup loadLightXml(const std::string& path) {
         a.fail("model", "unknown sky model '" + model + "' (valid: uniform, preetham, envmap)");
       }
     } else {
-      if (a.has("color")) l.color = a.vec3("color").cast<float>();
-      if (a.has("temperature_k")) l.temperature_k = static_cast<float>(a.number("temperature_k"));
+      if (a.has("color")) l.color = a.single3("color", a.vec3("color"));
+      if (a.has("temperature_k")) l.temperature_k = a.single("temperature_k");
     }
     if (l.type == LightType::Point || l.type == LightType::Spot) {
       l.position = a.vec3("position");
-      if (a.has("max_distance")) l.max_distance = static_cast<float>(a.number("max_distance"));
+      if (a.has("max_distance")) l.max_distance = a.single("max_distance");
     }
     if (l.type == LightType::Spot || l.type == LightType::Sun) l.direction = a.vec3("direction");
     if (l.type == LightType::Spot) {
-      l.cone_deg = static_cast<float>(a.number("cone_deg"));
-      l.falloff_deg = static_cast<float>(a.number("falloff_deg"));
+      l.cone_deg = a.single("cone_deg");
+      l.falloff_deg = a.single("falloff_deg");
     }
     if (l.type == LightType::Sun && a.has("angular_diameter_deg"))
-      l.angular_diameter_deg = static_cast<float>(a.number("angular_diameter_deg"));
+      l.angular_diameter_deg = a.single("angular_diameter_deg");
     setup.lights.push_back(l);
   }
   return setup;

@@ -29,10 +29,15 @@ struct LightSetup {
 
 /// The scene's lights plus one AreaLight per emissive object instance (named by the object).
 LightSetup lightSetupOf(const Scene& scene);
-/// Writes the setup as light.xml (atomically; fixed attribute order and number format).
+/// The setup as light.xml text (fixed attribute order and number format); `path` is where it
+/// will be written (an envmap sky's image is given relative to its folder).
+std::string lightXmlText(const Scene& scene, const std::string& path);
+/// Writes lightXmlText atomically.
 void saveLightXml(const Scene& scene, const std::string& path);
 /// Reads light.xml; throws InputError(path, "light[i].attribute", problem) for bad input.
 LightSetup loadLightXml(const std::string& path);
+/// Parses light.xml text read from `path` (relative envmap images are found from its folder).
+LightSetup parseLightXml(const std::string& text, const std::string& path);
 /// Replaces the scene's analytic lights and sets each listed emissive object's emission (0 when
 /// off; objects sharing a material get their own copy). Throws InputError(where, ...) when an
 /// entry names an object the scene does not have.

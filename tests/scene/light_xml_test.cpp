@@ -126,6 +126,20 @@ TEST(LightXml, EnvmapSkyRoundTripsWithItsImageAndRotation) {
             std::string::npos);
 }
 
+// Names are the user's (an imported lamp's object name): quotes, ampersands, angle brackets and
+// tabs were written raw, and the file did not read back.
+TEST(LightXml, NamesWithXmlCharactersRoundTrip) {
+  TempDir dir;
+  Scene s = litScene();
+  s.lights[0].name = "Lamp \"A\" & <co>\tdesk";
+  s.lights[0].object = "floor";
+  const std::string path = (dir.path() / "light.xml").string();
+  saveLightXml(s, path);
+  const LightSetup setup = loadLightXml(path);
+  ASSERT_EQ(setup.lights.size(), 4u);
+  EXPECT_EQ(setup.lights[0].name, "Lamp \"A\" & <co>\tdesk");
+}
+
 TEST(LightXml, SwitchesAndRecoloursOneEmitter) {
   TempDir dir;
   Scene s = litScene();
@@ -172,6 +186,11 @@ TEST(LightXml, MalformedFilesNameFileAndAttribute) {
        "light[0].on"},
       {R"(<lights><light name="a" type="SunLight" energy="1" direction="0 0 -1" brightness="-2"/></lights>)",
        "light[0].brightness"},
+      // found by fuzz_light_xml: a colour beyond float's range was written back as inf
+      {R"(<lights><light name="a" type="PointLight" energy="1" position="0 0 1" color="1 1e39 1"/></lights>)",
+       "light[0].color: 1e+39 is beyond a 32-bit float's range"},
+      {R"(<lights><light name="a" type="PointLight" energy="1e30" brightness="1e30" position="0 0 1"/></lights>)",
+       "light[0].energy"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE(cases[i].first);
