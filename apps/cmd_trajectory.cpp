@@ -55,17 +55,15 @@ void plotTrajectory(const fs::path& png, const Trajectory& traj, const Scene* sc
                     const FreeSpace* space, const std::string& title) {
   std::vector<Series> top;
   if (space != nullptr) {
-    // obstacles at 1.5 m: voxel centres that are not free but have a free neighbour
+    // obstacles at 1.5 m: grid cells a surface passes through (the exact distance, so the plot
+    // shows the geometry itself, not the grid's conservative band round it nor the faces of an
+    // open scene's grid)
     Series wall{"obstacles at 1.5 m", {}, {}, Rgb{150, 150, 150}, Series::Style::Points};
     wall.point_radius_px = 0.8;
     const double z = 1.5, v = space->voxel();
     for (double y = space->origin().y(); y < space->origin().y() + v * space->ny(); y += v)
-      for (double x = space->origin().x(); x < space->origin().x() + v * space->nx(); x += v) {
-        const bool free = space->lowerBound({x, y, z}) > 0;
-        const bool edge = free != (space->lowerBound({x + v, y, z}) > 0) ||
-                          free != (space->lowerBound({x, y + v, z}) > 0);
-        if (edge) wall.x.push_back(x), wall.y.push_back(y);
-      }
+      for (double x = space->origin().x(); x < space->origin().x() + v * space->nx(); x += v)
+        if (space->exactDistance({x, y, z}) < 0.5 * v) wall.x.push_back(x), wall.y.push_back(y);
     top.push_back(std::move(wall));
   }
   if (scene != nullptr)
