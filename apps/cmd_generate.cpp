@@ -113,16 +113,19 @@ bool warnIfOutsideScene(const Trajectory& frames, const FreeSpace& space, const 
     const Vec3 c = p.T_world_camera.t;
     lo = lo.cwiseMin(c);
     hi = hi.cwiseMax(c);
+    // the inside of a solid (a thick wall, a closed cabinet) is not indoors either: only the
+    // big free regions are (free_space.h)
     if (!space.isIndoors(c))
       ++outside;
-    else if (space.exactDistance(c) < 0.02 || space.lowerBound(c) < -1.9 * space.voxel())
-      ++in_geometry;  // at a surface, or deep in an occupied region (a wall's inside)
+    else if (space.exactDistance(c) < 0.02)
+      ++in_geometry;
   }
   if (outside + in_geometry == 0) return false;
   const auto [slo, shi] = scene.bounds();
   std::fprintf(stderr,
                "warning: %s: %zu of %zu camera positions are outside the scene's indoor space "
-               "and %zu inside or touching its geometry: the path spans x [%.2f, %.2f] y [%.2f, "
+               "(outside its walls or inside a solid) and %zu within 2 cm of its geometry: the "
+               "path spans x [%.2f, %.2f] y [%.2f, "
                "%.2f] z [%.2f, %.2f] m, the scene x [%.2f, %.2f] y [%.2f, %.2f] z [%.2f, %.2f] "
                "m (a file's poses are used as they are, in the scene's frame: Z up, metres; "
                "--place-trajectory moves the path into the scene)\n",
@@ -178,7 +181,7 @@ CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
         "at least 0.1 m from the geometry (as given: {:.0f} %)",
         placed.yaw_deg, t.x(), t.y(), t.z(), 100.0 * placed.free_after,
         100.0 * placed.free_before);
-    if (placed.yaw_deg == 0.0 && t == Vec3::Zero()) {
+    if (!placed.moved) {
       std::fprintf(stderr, "%s: left where it is (%.0f %% of its poses at least 0.1 m from the "
                    "geometry; no turn or shift does better)\n",
                    a.trajectory.c_str(), 100.0 * placed.free_before);

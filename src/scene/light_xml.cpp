@@ -168,19 +168,11 @@ std::string lightXmlText(const Scene& scene, const std::string& path) {
         out += fmt::format(" sun_direction=\"{}\" turbidity=\"{}\"", vec(l.direction),
                            num(l.turbidity));
       if (l.sky_model == SkyModel::EnvMap) {
-        // the image relative to this file's folder (as layout.json keeps it), the rotation as
-        // 9 numbers, row by row
-        // (absolute when the two share no folder below the root: ../../../work/... says less)
-        std::error_code ec;
-        const fs::path image =
-            fs::absolute(l.envmap.path.empty() ? l.envmap.file : l.envmap.path).lexically_normal();
-        const fs::path here = fs::absolute(path).parent_path().lexically_normal();
-        fs::path rel = fs::proximate(image, here, ec);
-        const auto top = [](const fs::path& p) {
-          auto it = p.begin();
-          return it != p.end() && ++it != p.end() ? *it : fs::path();
-        };
-        if (ec || top(image) != top(here)) rel = image;
+        // the image relative to this file's folder (as `layout import` and `vary` write
+        // layout.json's), the rotation as 9 numbers, row by row
+        const fs::path image = l.envmap.path.empty() ? l.envmap.file : l.envmap.path;
+        const fs::path rel =
+            fs::proximate(fs::absolute(image), fs::absolute(path).parent_path());
         Eigen::Matrix<double, 9, 1> rows;
         for (int i = 0; i < 3; ++i) rows.segment<3>(3 * i) = l.envmap_rotation.row(i).transpose();
         out += fmt::format(" file=\"{}\" rotation=\"{}\"", attr(rel.generic_string()), vec(rows));
@@ -266,9 +258,9 @@ LightSetup parseLightXml(const std::string& text, const std::string& path) {
       } else if (model == "envmap") {
         l.sky_model = SkyModel::EnvMap;
         l.envmap.file = a.text("file");
-        const fs::path image = fs::path(path).parent_path() / l.envmap.file;
-        l.envmap.path = fs::path(l.envmap.file).is_absolute() ? l.envmap.file
-                                                               : image.lexically_normal().string();
+        l.envmap.path = fs::path(l.envmap.file).is_absolute()
+                            ? l.envmap.file
+                            : (fs::path(path).parent_path() / l.envmap.file).string();
         std::error_code ec;
         if (!fs::is_regular_file(l.envmap.path, ec))
           a.fail("file", "no such image '" + l.envmap.path + "'");

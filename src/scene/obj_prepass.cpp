@@ -70,14 +70,18 @@ ObjPrepass prepassObj(const std::string& path) {
   std::vector<std::string> used;
   std::set<std::string> used_seen;
   // the last line that declares each group name (`g NAME`; `o NAME` too, as Assimp reads it)
+  // (a scan of the line starts only: the file's other lines are not split twice)
   std::map<std::string, int> last_declared;
-  {
-    int n = 0;
-    for (const std::string& l : splitLines(text)) {
-      ++n;
-      const std::vector<std::string> t = splitWhitespace(l);
+  int n = 1;
+  for (size_t at = 0; at < text.size(); ++n) {
+    const size_t first = text.find_first_not_of(" \t", at);
+    const size_t end = std::min(text.find('\n', at), text.size());
+    if (first < end && (text[first] == 'g' || text[first] == 'o')) {
+      const size_t stop = text[end - 1] == '\r' ? end - 1 : end;  // CRLF
+      const std::vector<std::string> t = splitWhitespace(text.substr(first, stop - first));
       if (t.size() == 2 && (t[0] == "g" || t[0] == "o")) last_declared[t[1]] = n;
     }
+    at = end + 1;
   }
   std::string group;  // the current group's name
   size_t pos = 0;

@@ -10,8 +10,8 @@ namespace inet {
 
 namespace {
 
-/// The share of `points` (moved by yaw c, s and shift t) that are free, giving up as soon as it
-/// cannot beat `need` free points.
+/// How many of `points` (turned by yaw c, s and shifted by t) are free; stops counting as soon
+/// as it cannot reach `need`.
 size_t countFree(const std::vector<Vec3>& points, double c, double s, const Vec3& t,
                  const FreeSpace& space, double clearance, size_t need) {
   size_t free = 0;
@@ -34,7 +34,8 @@ PathPlacement placePath(const Trajectory& path, const FreeSpace& space,
   // the scored poses, relative to the path's horizontal centroid
   std::vector<Vec3> points;
   const size_t n = path.poses.size(), m = std::min(n, opt.max_samples);
-  for (size_t k = 0; k < m; ++k) points.push_back(path.poses[m == 1 ? 0 : k * (n - 1) / (m - 1)].T_world_camera.t);
+  for (size_t k = 0; k < m; ++k)
+    points.push_back(path.poses[m == 1 ? 0 : k * (n - 1) / (m - 1)].T_world_camera.t);
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& p : points) centroid += p;
   centroid /= static_cast<double>(points.size());
@@ -57,24 +58,23 @@ PathPlacement placePath(const Trajectory& path, const FreeSpace& space,
       thin.push_back(anchors[k * anchors.size() / opt.max_anchors]);
     anchors = std::move(thin);
   }
-  size_t best = 0;
+  // the best candidate so far must beat the file's own frame
+  size_t best = before;
   double best_yaw = 0.0;
-  Vec3 best_t = centroid;
-  bool found = false;
-  for (int y = 0; y < opt.yaws; ++y) {
+  Vec3 best_t = Vec3::Zero();
+  for (int y = 0; y < opt.yaws && best < points.size(); ++y) {
     const double yaw = 2.0 * M_PI * y / opt.yaws, c = std::cos(yaw), s = std::sin(yaw);
     for (const FreeSpace::FreeVoxel& a : anchors) {
       const Vec3 t(a.centre.x(), a.centre.y(), a.floor_z);
-      const size_t need = found ? best + 1 : 0;
-      const size_t f = countFree(points, c, s, t, space, opt.clearance, need);
-      if (!found || f > best) {
-        best = f, best_yaw = yaw, best_t = t, found = true;
+      const size_t f = countFree(points, c, s, t, space, opt.clearance, best + 1);
+      if (f > best) {
+        best = f, best_yaw = yaw, best_t = t;
         if (best == points.size()) break;
       }
     }
-    if (best == points.size()) break;
   }
-  if (best <= before) return out;  // nothing does better than the file's own frame
+  if (best == before) return out;  // nothing does better than the file's own frame
+  out.moved = true;
   out.free_after = static_cast<double>(best) / static_cast<double>(points.size());
   out.yaw_deg = best_yaw * 180.0 / M_PI;
   // T: p -> R (p - centroid) + t

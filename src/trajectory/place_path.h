@@ -28,6 +28,7 @@ struct PlacePathOptions {
 };
 
 struct PathPlacement {
+  bool moved = false;     ///< false: the file's own frame was best (T is the identity)
   Pose T_scene_file;      ///< maps the file's poses into the scene: T * T_file_camera
   double yaw_deg = 0.0;   ///< the turn about +z
   double free_before = 0.0;  ///< share of the scored poses free as the file has them

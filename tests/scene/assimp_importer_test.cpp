@@ -567,6 +567,15 @@ TEST(AssimpImporter, GroupNamesWrittenAfterTheirFaces) {
   EXPECT_EQ(late.objects[findObject(late, "door")].nyu40, id("door"));
   for (const Object& o : late.objects)
     if (o.name == "leftWall") EXPECT_EQ(o.nyu40, id("wall"));
+  // the same with CRLF line ends
+  std::string crlf = tri + "g leftWall\nusemtl leftWall\nf 1 2 3\nusemtl shortBox\nf 1 3 2\n"
+                           "g shortBox\nusemtl shortBox\n";
+  for (size_t i = crlf.find('\n'); i != std::string::npos; i = crlf.find('\n', i + 2))
+    crlf.replace(i, 1, "\r\n");
+  const Scene late_crlf = importMeshScene(tmp.write("late_crlf.obj", crlf), {}, &report);
+  EXPECT_EQ(report.obj_late_groups, 1u);
+  ASSERT_GE(findObject(late_crlf, "shortBox"), 0);
+  EXPECT_EQ(late_crlf.objects[findObject(late_crlf, "shortBox")].nyu40, id("box"));
   // the usual order, and a material named after no group: nothing moves
   importMeshScene(tmp.write("usual.obj", tri + "g leftWall\nusemtl leftWall\nf 1 2 3\n"
                                          "g shortBox\nusemtl shortBox\nf 1 3 2\n"

@@ -43,6 +43,7 @@ TEST(PlacePath, AWalkFromAnotherRoomIsTurnedAndMovedIntoTheCorridor) {
   const FreeSpace space(s);
   const Trajectory path = walk(40.0);
   const PathPlacement p = placePath(path, space);
+  EXPECT_TRUE(p.moved);
   EXPECT_EQ(p.free_before, 0.0);
   EXPECT_EQ(p.free_after, 1.0);
   EXPECT_NEAR(std::fmod(p.yaw_deg, 180.0), 90.0, 1e-9) << "the walk lies along the corridor";
@@ -70,6 +71,7 @@ TEST(PlacePath, APathAlreadyInsideIsLeftAsItIs) {
   for (int k = 0; k <= 40; ++k)
     inside.poses.push_back({k * 50'000'000LL, Pose{Quat::Identity(), Vec3(1.0 + 0.1 * k, 1.0, 1.4)}});
   const PathPlacement p = placePath(inside, space);
+  EXPECT_FALSE(p.moved);
   EXPECT_EQ(p.free_before, 1.0);
   EXPECT_EQ(p.free_after, 1.0);
   EXPECT_EQ(p.yaw_deg, 0.0);
