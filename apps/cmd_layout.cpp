@@ -5,17 +5,23 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <functional>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "common.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/progress.h"
 #include "procedural/apartment.h"
+#include "render/camera.h"
+#include "render/sky.h"
 #include "scene/assimp_importer.h"
 #include "scene/layout_json.h"
 #include "scene/front3d_importer.h"
+#include "scene/gltf_export.h"
 #include "scene/layout_stats.h"
 #include "scene/light_xml.h"
 #include "scene/nyu40.h"
@@ -185,6 +191,93 @@ void layoutStats(const std::string& in, const std::string& out) {
   fmt::print("{} layouts: statistics (CSV tables and PNG charts) in {}\n", stats.layouts, out);
 }
 
+/// The radiance of the scene's skies (summed) over every direction, as an equirectangular image
+/// in Blender's convention (GltfExportOptions::sky_image); empty when the scene has no sky.
+ImageF bakeSky(const Scene& s, const std::string& where, int width) {
+  std::vector<std::function<Vec3f(const Vec3f&)>> skies;
+  std::vector<std::shared_ptr<void>> keep;
+  for (const Light& l : s.lights) {
+    if (l.type != LightType::Sky || !l.on) continue;
+    if (l.sky_model == SkyModel::Preetham) {
+      auto sky = std::make_shared<PreethamSkyLight>(l);
+      keep.push_back(sky);
+      skies.push_back([sky](const Vec3f& d) { return sky->radiance(d); });
+    } else if (l.sky_model == SkyModel::EnvMap) {
+      auto sky = std::make_shared<EnvMapSkyLight>(l, where);
+      keep.push_back(sky);
+      skies.push_back([sky](const Vec3f& d) { return sky->radiance(d); });
+    } else {
+      const Vec3f c = l.rgbIntensity();
+      skies.push_back([c](const Vec3f&) { return c; });
+    }
+  }
+  if (skies.empty()) return {};
+  const int height = width / 2;
+  ImageF img(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      // Blender: u = 0.5 - atan2(d.y, d.x) / 2 pi, v (from the top) = 0.5 - elevation / pi
+      const double az = (0.5 - (x + 0.5) / width) * 2.0 * M_PI;
+      const double el = (0.5 - (y + 0.5) / height) * M_PI;
+      const Vec3f d(static_cast<float>(std::cos(el) * std::cos(az)),
+                    static_cast<float>(std::cos(el) * std::sin(az)),
+                    static_cast<float>(std::sin(el)));
+      Vec3f sum = Vec3f::Zero();
+      for (const auto& f : skies) sum += f(d);
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = sum[c];
+    }
+  return img;
+}
+
+struct ExportArgs {
+  SceneArgs scene;
+  std::string out, format, camera;
+  int sky_width = 1024;
+};
+
+void exportLayout(const ExportArgs& a) {
+  namespace fs = std::filesystem;
+  std::string format = a.format;
+  const std::string ext = fs::path(a.out).extension().string();
+  if (format.empty()) {
+    if (ext != ".gltf" && ext != ".glb")
+      throw InputError("", "--out", "name a .gltf or .glb file (or give --format)");
+    format = ext.substr(1);
+  }
+  if (ext != "." + format)
+    throw InputError("", "--out", fmt::format("a {} file ends in .{}", format, format));
+  if (a.sky_width < 8 || a.sky_width % 2)
+    throw InputError("", "--sky-width", "an even number of pixels, at least 8");
+  const Scene s = a.scene.load();
+  GltfExportOptions opt;
+  opt.binary = format == "glb";
+  if (!a.camera.empty()) {
+    const CameraFile cam = loadCameraJson(a.camera);
+    GltfCamera c;
+    c.width = cam.intrinsics.width;
+    c.height = cam.intrinsics.height;
+    c.fx = cam.intrinsics.fx;
+    c.fy = cam.intrinsics.fy;
+    c.cx = cam.intrinsics.cx;
+    c.cy = cam.intrinsics.cy;
+    c.T_world_camera = cam.T_world_camera.matrix();
+    opt.camera = c;
+  }
+  const ImageF sky = bakeSky(s, a.scene.path, a.sky_width);
+  if (!sky.data.empty()) {
+    opt.sky_image = fs::path(a.out).stem().string() + "_sky.exr";
+    writeExr(fs::absolute(a.out).parent_path() / opt.sky_image, sky, {"R", "G", "B"});
+  }
+  const GltfExportReport r = exportGltf(s, a.out, opt);
+  for (const std::string& n : r.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+  fmt::print("{}: {} nodes, {} meshes, {} materials, {} images, {} lights{}{}{}, {:.1f} MB{}\n",
+             a.out, r.nodes, r.meshes, r.materials, r.images, r.lights,
+             r.lights_off ? fmt::format(" ({} off, left out)", r.lights_off) : "",
+             r.animations ? fmt::format(", {} animations", r.animations) : "",
+             opt.camera ? ", a camera" : "", r.bytes / 1e6,
+             opt.sky_image.empty() ? "" : "; the sky baked into " + opt.sky_image);
+}
+
 }  // namespace
 
 void registerLayout(CLI::App& app) {
@@ -228,6 +321,27 @@ void registerLayout(CLI::App& app) {
       ->required();
   stats->add_option("--out", *stats_out, "output folder for the tables and charts")->required();
   stats->callback([stats_in, stats_out] { layoutStats(*stats_in, *stats_out); });
+
+  auto* exp = layout->add_subcommand(
+      "export",
+      "Write a layout or mesh scene as glTF 2.0 (.gltf + .bin + textures, or one .glb) for "
+      "Blender, web viewers and other renderers: PBR materials, KHR_lights_punctual lights, "
+      "NYU40 class, instance and part per node in extras, an optional camera, the sky baked into "
+      "an equirectangular EXR beside it (docs/gltf.md)");
+  auto exp_args = std::make_shared<ExportArgs>();
+  exp->add_option("FILE", exp_args->scene.path,
+                  "the scene to export (the same as --layout): layout.json or any mesh file; "
+                  "default: the built-in furnished room");
+  exp_args->scene.addTo(*exp);
+  exp->add_option("--out", exp_args->out, "the .gltf or .glb file to write (atomically)")
+      ->required();
+  exp->add_option("--format", exp_args->format, "gltf or glb (default: from --out's extension)")
+      ->check(CLI::IsMember({"gltf", "glb"}));
+  exp->add_option("--camera", exp_args->camera,
+                  "a camera.json (render --camera's format) to add as the glTF camera");
+  exp->add_option("--sky-width", exp_args->sky_width,
+                  "width in pixels of the baked sky image (default 1024; height is half)");
+  exp->callback([exp_args] { exportLayout(*exp_args); });
 
   auto* import = layout->add_subcommand(
       "import",

@@ -13,11 +13,17 @@ PACKAGES=(
   libhdf5-dev
   libyaml-cpp-dev
   libbullet-dev
+  libtinygltf-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).
 if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang libclang-rt-14-dev)
+fi
+# `setup.sh peers` also installs the peer renderer the benchmarks and the glTF export's test
+# compare against (Blender with Cycles; bench/cycles_gltf.py).
+if [ "${1:-}" = "peers" ]; then
+  PACKAGES+=(blender)
 fi
 
 missing=()

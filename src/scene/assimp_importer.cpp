@@ -8,11 +8,13 @@
 #include <assimp/MemoryIOWrapper.h>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <unistd.h>
@@ -418,6 +420,39 @@ Mat4 fileTransformToWorld(const Mat4& T_file, double scale, char up) {
   return T;
 }
 
+/// A value from a node's metadata (glTF node extras, as Assimp reads them; our glTF export
+/// writes nyu40, instance, kind, part, mass_kg, friction, movable there).
+std::optional<double> metaNumber(const aiNode* node, const char* key) {
+  const aiMetadata* md = node->mMetaData;
+  if (!md) return std::nullopt;
+  for (unsigned i = 0; i < md->mNumProperties; ++i) {
+    if (std::strcmp(md->mKeys[i].C_Str(), key) != 0) continue;
+    const void* v = md->mValues[i].mData;
+    switch (md->mValues[i].mType) {
+      case AI_INT32: return *static_cast<const int32_t*>(v);
+      case AI_UINT64: return static_cast<double>(*static_cast<const uint64_t*>(v));
+      case AI_FLOAT: return *static_cast<const float*>(v);
+      case AI_DOUBLE: return *static_cast<const double*>(v);
+      case AI_BOOL: return *static_cast<const bool*>(v) ? 1.0 : 0.0;
+      default: return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string metaString(const aiNode* node, const char* key) {
+  aiString s;
+  if (node->mMetaData && node->mMetaData->Get(key, s)) return s.C_Str();
+  return {};
+}
+
+/// The node's integer metadata `key` when it is a whole number in [lo, hi].
+std::optional<int> metaInt(const aiNode* node, const char* key, int lo, int hi) {
+  auto v = metaNumber(node, key);
+  if (!v || *v != std::floor(*v) || *v < lo || *v > hi) return std::nullopt;
+  return static_cast<int>(*v);
+}
+
 /// Turns (node, aiMesh) pairs into Objects, sharing meshes and materials as it goes.
 struct SceneBuilder {
   SceneBuilder(const aiScene* ai, const std::string& path, const ImportOptions& opt,
@@ -431,7 +466,12 @@ struct SceneBuilder {
         shared_mesh(ai->mNumMeshes, -2),
         material_of(ai->mNumMaterials, -1),
         model_dir(fs::path(path).parent_path()),
-        is_obj(lowerExtension(path) == ".obj") {}
+        is_obj(lowerExtension(path) == ".obj") {
+    // instance ids a file states (our glTF export) are kept; named objects get the others
+    walkNodes(ai->mRootNode, Mat4::Identity(), [&](const aiNode* node, const Mat4&) {
+      if (auto id = metaInt(node, "instance", 1, 65535)) stated_instances.insert(*id);
+    });
+  }
 
   void addNode(const aiNode* node, const Mat4& T_file) {
     const Mat4 T_world = fileTransformToWorld(T_file, opt.scale, opt.up);
@@ -459,11 +499,29 @@ struct SceneBuilder {
         obj.mesh = static_cast<int>(scene.meshes.size()) - 1;
       }
       obj.material = materialIndex(in->mMaterialIndex);
-      obj.nyu40 = resolveLabel(labels, obj.name, default_id, report, unmatched_seen);
-      auto it = instance_of.emplace(obj.name, static_cast<int>(instance_of.size()) + 1).first;
-      if (it->second > 65535)
-        throw InputError(path, obj.name, "more than 65535 distinct object names (instance ids)");
-      obj.instance = it->second;
+      const auto stated_class = metaInt(node, "nyu40", 0, 40);
+      obj.nyu40 = stated_class ? *stated_class
+                               : resolveLabel(labels, obj.name, default_id, report, unmatched_seen);
+      if (auto id = metaInt(node, "instance", 1, 65535)) {
+        obj.instance = *id;
+      } else {
+        auto [it, fresh] = instance_of.emplace(obj.name, 0);
+        if (fresh) {
+          while (stated_instances.count(++next_instance)) {
+          }
+          it->second = next_instance;
+        }
+        if (it->second > 65535)
+          throw InputError(path, obj.name, "more than 65535 distinct object names (instance ids)");
+        obj.instance = it->second;
+      }
+      obj.kind = metaString(node, "kind");
+      obj.part = metaString(node, "part");
+      const auto mass = metaNumber(node, "mass_kg"), friction = metaNumber(node, "friction");
+      if (mass && *mass > 0 && friction && *friction >= 0) {
+        obj.physics = PhysicsProps{static_cast<float>(*mass), static_cast<float>(*friction),
+                                   metaNumber(node, "movable").value_or(0.0) != 0.0};
+      }
       scene.objects.push_back(std::move(obj));
     }
   }
@@ -490,6 +548,8 @@ struct SceneBuilder {
   const bool is_obj;
   std::set<std::string> mesh_ids, material_ids, unmatched_seen;
   std::map<std::string, int> instance_of;
+  std::set<int> stated_instances;  ///< instance ids in the file's node metadata
+  int next_instance = 0;
   Scene scene;
   ImportReport report;
 };
