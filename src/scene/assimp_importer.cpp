@@ -526,6 +526,53 @@ struct SceneBuilder {
     }
   }
 
+  /// The file's lights, placed by their nodes (`node_T`: file transform of each named node).
+  /// Only glTF states units (KHR_lights_punctual: candela and lux, which Assimp keeps as colour
+  /// x intensity); they are turned into ours at 683 lm/W, as our glTF export writes them.
+  void addLights(const std::map<std::string, Mat4>& node_T, bool gltf) {
+    for (unsigned i = 0; i < ai->mNumLights; ++i) {
+      const aiLight* in = ai->mLights[i];
+      auto it = node_T.find(in->mName.C_Str());
+      const bool known = in->mType == aiLightSource_POINT || in->mType == aiLightSource_SPOT ||
+                         in->mType == aiLightSource_DIRECTIONAL;
+      if (!gltf || !known || it == node_T.end()) {
+        ++report.skipped_lights;
+        continue;
+      }
+      const Vec3f rgb =
+          Vec3f(in->mColorDiffuse.r, in->mColorDiffuse.g, in->mColorDiffuse.b) / 683.f;
+      if (!(rgb.maxCoeff() > 0.f) || !rgb.allFinite()) {
+        ++report.skipped_lights;
+        continue;
+      }
+      // the light's position and direction are in its node's frame: world = C T_file x
+      const Mat4 T = C * it->second;
+      Light l;
+      l.name = in->mName.C_Str();
+      l.intensity = rgb.maxCoeff();
+      l.color = rgb / l.intensity;
+      l.position = (T * Eigen::Vector4d(in->mPosition.x, in->mPosition.y, in->mPosition.z, 1.0))
+                       .head<3>();
+      const Vec3 d = T.block<3, 3>(0, 0) * Vec3(in->mDirection.x, in->mDirection.y,
+                                                in->mDirection.z);
+      l.direction = d.norm() > 0 ? Vec3(d.normalized()) : Vec3(-Vec3::UnitZ());
+      if (in->mType == aiLightSource_POINT) {
+        l.type = LightType::Point;
+      } else if (in->mType == aiLightSource_SPOT) {
+        l.type = LightType::Spot;
+        // Assimp keeps glTF's cone angles, measured from the axis
+        l.cone_deg = static_cast<float>(in->mAngleOuterCone * 180.0 / M_PI);
+        l.falloff_deg = std::clamp(
+            static_cast<float>((in->mAngleOuterCone - in->mAngleInnerCone) * 180.0 / M_PI), 0.f,
+            l.cone_deg);
+      } else {
+        l.type = LightType::Sun;
+      }
+      scene.lights.push_back(l);
+      ++report.lights;
+    }
+  }
+
   int materialIndex(unsigned ai_index) {
     int& mat = material_of[ai_index];
     if (mat < 0) {
@@ -605,6 +652,11 @@ std::string ImportReport::summary(const std::string& default_category) const {
         "the scene is {:.0f} m across: if its unit is not the metre, give --scale (0.01 for "
         "centimetres, 0.001 for millimetres)",
         extent_m));
+  if (skipped_lights > 0)
+    parts.push_back(fmt::format(
+        "{} light(s) in the file were left out: only glTF's KHR_lights_punctual states units "
+        "(use --lights or --auto-lights)",
+        skipped_lights));
   if (split_shells > 0)
     parts.push_back(fmt::format(
         "{} object(s) labelled wall held the room's floor or ceiling too: split into floor and "
@@ -710,8 +762,14 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   builder.report.obj_late_groups = prepass.late_groups;
   builder.report.missing_mtllibs = prepass.missing_mtllibs;
   builder.report.grey_materials = prepass.grey_materials;
+  std::map<std::string, Mat4> node_T;  // for the lights, which Assimp names after their node
   walkNodes(importer->GetScene()->mRootNode, Mat4::Identity(),
-            [&](const aiNode* node, const Mat4& T_file) { builder.addNode(node, T_file); });
+            [&](const aiNode* node, const Mat4& T_file) {
+              builder.addNode(node, T_file);
+              node_T.emplace(node->mName.C_Str(), T_file);
+            });
+  const std::string ext = lowerExtension(path);
+  builder.addLights(node_T, ext == ".gltf" || ext == ".glb");
   Scene& scene = builder.scene;
   scene.name = fs::path(path).stem().string();
   if (scene.objects.empty())

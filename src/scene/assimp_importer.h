@@ -46,6 +46,8 @@ struct ImportReport {
   /// Materials without Ke whose ambient colour Ka exceeds 1 (no reflectance can): taken as
   /// emitted radiance, the way older OBJ files (Cornell boxes) give their light.
   std::vector<std::string> ka_emission_materials;
+  size_t lights = 0;          ///< glTF KHR_lights_punctual lights imported (683 lm/W)
+  size_t skipped_lights = 0;  ///< lights of other formats (units unknown) or without a node
   size_t split_shells = 0;  ///< wall objects that held the floor or ceiling too (room_shell.h)
   // OBJ files (scene/obj_prepass.h): what Assimp would have got wrong or said nothing about
   size_t obj_w_values = 0;                    ///< `v x y z w` lines whose w was dropped

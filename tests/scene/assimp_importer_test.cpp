@@ -565,8 +565,11 @@ TEST(AssimpImporter, GroupNamesWrittenAfterTheirFaces) {
   EXPECT_EQ(late.objects[findObject(late, "shortBox")].nyu40, id("box"));
   ASSERT_GE(findObject(late, "door"), 0);
   EXPECT_EQ(late.objects[findObject(late, "door")].nyu40, id("door"));
-  for (const Object& o : late.objects)
-    if (o.name == "leftWall") EXPECT_EQ(o.nyu40, id("wall"));
+  for (const Object& o : late.objects) {
+    if (o.name == "leftWall") {
+      EXPECT_EQ(o.nyu40, id("wall"));
+    }
+  }
   // the same with CRLF line ends
   std::string crlf = tri + "g leftWall\nusemtl leftWall\nf 1 2 3\nusemtl shortBox\nf 1 3 2\n"
                            "g shortBox\nusemtl shortBox\n";

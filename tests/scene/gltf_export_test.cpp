@@ -78,6 +78,33 @@ void expectSameObjects(const Scene& a, const Scene& b) {
   EXPECT_LT((ahi - bhi).norm(), 1e-5);
 }
 
+/// The lights that are on (point, spot, sun; skies are not glTF lights) come back in order with
+/// the same type, place, direction, RGB intensity and cone.
+void expectSameLights(const Scene& a, const Scene& b) {
+  std::vector<const Light*> on;
+  for (const Light& l : a.lights)
+    if (l.on && l.type != LightType::Sky) on.push_back(&l);
+  ASSERT_EQ(on.size(), b.lights.size());
+  for (size_t i = 0; i < on.size(); ++i) {
+    const Light &x = *on[i], &y = b.lights[i];
+    SCOPED_TRACE(x.name);
+    EXPECT_EQ(x.type, y.type);
+    EXPECT_LT(((x.rgbIntensity() - y.rgbIntensity()).cwiseAbs() / x.rgbIntensity().maxCoeff())
+                  .maxCoeff(),
+              1e-5);
+    if (x.type != LightType::Sun) {
+      EXPECT_LT((x.position - y.position).norm(), 1e-5);
+    }
+    if (x.type != LightType::Point) {
+      EXPECT_LT((x.direction - y.direction).norm(), 1e-5);
+    }
+    if (x.type == LightType::Spot) {
+      EXPECT_NEAR(x.cone_deg, y.cone_deg, 1e-3);
+      EXPECT_NEAR(x.falloff_deg, y.falloff_deg, 1e-3);
+    }
+  }
+}
+
 TEST(GltfExport, ApartmentRoundTripsThroughOurImporter) {
   test::TempDir dir("gltf_apt");
   const Apartment apt = apartment(dir.path());
@@ -96,6 +123,7 @@ TEST(GltfExport, ApartmentRoundTripsThroughOurImporter) {
     }
     const Scene back = reimport(out);
     expectSameObjects(apt.scene, back);
+    expectSameLights(apt.scene, back);
     // textures came along: as many textured materials after as before
     auto textured = [](const Scene& s) {
       int n = 0;

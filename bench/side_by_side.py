@@ -1,0 +1,51 @@
+"""Side-by-side PNG of linear EXR renders (run inside Blender's Python, which has NumPy):
+
+    blender -b --factory-startup -P bench/side_by_side.py -- OUT.png [--scale 2] \\
+        [--exposure-ev -1] [--crop x0,y0,w,h] a.exr b.exr ...
+
+Every image gets the same exposure (stops), is clipped to [0, 1] and sRGB-encoded, is scaled by
+nearest neighbour (each pixel stays visible), and is optionally cropped (pixels, from the top
+left), then the images are put side by side, left to right in the order given.
+"""
+import argparse
+import sys
+
+import bpy
+import numpy as np
+
+
+def srgb(x):
+    x = np.clip(x, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def main():
+    ap = argparse.ArgumentParser(prog="side_by_side.py")
+    ap.add_argument("out")
+    ap.add_argument("images", nargs="+")
+    ap.add_argument("--scale", type=int, default=1)
+    ap.add_argument("--exposure-ev", type=float, default=0.0)
+    ap.add_argument("--crop")
+    a = ap.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    tiles = []
+    for f in a.images:
+        im = bpy.data.images.load(f)
+        w, h = im.size
+        px = np.array(im.pixels[:]).reshape(h, w, im.channels)[::-1, :, :3]  # row 0 = top
+        if a.crop:
+            x0, y0, cw, ch = (int(v) for v in a.crop.split(","))
+            px = px[y0:y0 + ch, x0:x0 + cw]
+        px = srgb(px * 2.0 ** a.exposure_ev)
+        tiles.append(np.repeat(np.repeat(px, a.scale, 0), a.scale, 1))
+    gap = np.ones((tiles[0].shape[0], 4, 3))
+    row = np.concatenate(sum(([t, gap] for t in tiles), [])[:-1], axis=1)[::-1]
+    h, w = row.shape[:2]
+    out = bpy.data.images.new("side_by_side", w, h)
+    out.colorspace_settings.name = "Non-Color"  # already encoded
+    out.pixels = np.concatenate([row, np.ones((h, w, 1))], axis=2).ravel()
+    out.filepath_raw = a.out
+    out.file_format = "PNG"
+    out.save()
+
+
+main()
