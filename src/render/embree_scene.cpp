@@ -354,6 +354,7 @@ void EmbreeScene::buildLights(const Scene& scene) {
       e.area = 0.5f * c.norm();
       e.normal = c.norm() > 0 ? Vec3f(c.normalized()) : Vec3f(0, 0, 1);
       e.radiance = mat.emission;
+      e.group = static_cast<int>(i);
       triangles.push_back(e);
     }
   }

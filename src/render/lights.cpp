@@ -22,11 +22,36 @@ float smoothstep(float a, float b, float x) {
 }  // namespace
 
 SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles,
-                         float scene_radius)
+                         float /*scene_radius*/)
     : triangles_(std::move(triangles)) {
-  std::vector<double> power;
-  for (const auto& t : triangles_)
-    power.push_back(static_cast<double>(t.area) * kPi * luminance(t.radiance));
+  triangle_in_group_.resize(triangles_.size());
+  for (size_t i = 0; i < triangles_.size();) {
+    Group g;
+    g.first = i;
+    Eigen::AlignedBox3f box;
+    double power = 0.0;
+    std::vector<double> acc;
+    for (; i < triangles_.size() && triangles_[i].group == triangles_[g.first].group; ++i) {
+      const EmissiveTriangle& t = triangles_[i];
+      box.extend(t.p0);
+      box.extend(Vec3f(t.p0 + t.e1));
+      box.extend(Vec3f(t.p0 + t.e2));
+      power += static_cast<double>(t.area) * kPi * luminance(t.radiance);
+      acc.push_back(power);
+    }
+    g.count = i - g.first;
+    if (!(power > 0.0)) continue;  // nothing to pick (a black or degenerate emitter)
+    g.centre = box.center();
+    g.radius2 = std::max(0.25f * box.sizes().squaredNorm(), 1e-6f);
+    g.power = static_cast<float>(power);
+    for (size_t k = 0; k < g.count; ++k) {
+      g.cdf.push_back(static_cast<float>(acc[k] / power));
+      const double prev = k ? acc[k - 1] : 0.0;
+      triangle_in_group_[g.first + k] = static_cast<float>((acc[k] - prev) / power);
+    }
+    g.cdf.back() = 1.f;
+    groups_.push_back(std::move(g));
+  }
   for (const Light& l : scene.lights) {
     if (!l.on || l.intensity <= 0.f) continue;
     Analytic a;
@@ -35,81 +60,114 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
     a.direction = l.direction.normalized().cast<float>();
     a.rgb = l.rgbIntensity();
     a.max_distance = l.max_distance;
-    double p = luminance(a.rgb);
-    if (l.type == LightType::Point) {
-      p *= 4.0 * M_PI;
-    } else if (l.type == LightType::Spot) {
+    // Suns: their irradiance; skies: the integral of their luminance over the directions they
+    // shine from (an upper bound on the irradiance they give, within a factor 4 for a uniform
+    // sky); the same weights relative to each other as the global pick had.
+    float irradiance = 0.f;
+    if (l.type == LightType::Spot) {
       a.cos_outer = std::cos(l.cone_deg * kPi / 180.f);
       a.cos_inner = std::cos((l.cone_deg - l.falloff_deg) * kPi / 180.f);
-      p *= 2.0 * M_PI * (1.0 - 0.5 * (a.cos_outer + a.cos_inner));
     } else if (l.type == LightType::Sky && l.sky_model == SkyModel::Preetham) {
-      // as for the uniform sky: the light entering the scene's bounding sphere, pi r^2 per
-      // steradian of sky, so pi r^2 x the integral of the sky's luminance
       a.sky = static_cast<int>(skies_.size());
       skies_.emplace_back(l);
-      p = M_PI * scene_radius * scene_radius * skies_.back().luminanceIntegral();
+      irradiance = static_cast<float>(skies_.back().luminanceIntegral());
     } else if (l.type == LightType::Sky && l.sky_model == SkyModel::EnvMap) {
-      // as for the Preetham sky, over the whole sphere
       a.envmap = static_cast<int>(envmaps_.size());
       envmaps_.emplace_back(l, l.envmap.path);
-      p = M_PI * scene_radius * scene_radius * envmaps_.back().luminanceIntegral();
+      irradiance = static_cast<float>(envmaps_.back().luminanceIntegral());
     } else if (l.type == LightType::Sky) {
-      // radiance L from the whole sphere: power ~ pi L x the area of the scene's bounding sphere
-      p *= 4.0 * M_PI * M_PI * scene_radius * scene_radius;
-    } else {
+      irradiance = 4.f * kPi * luminance(a.rgb);  // int L dw over the sphere, as the others
+    } else if (l.type == LightType::Sun) {
       float half = 0.5f * l.angular_diameter_deg * kPi / 180.f;
       a.cos_max = std::cos(half);
       a.one_minus_cos_max = static_cast<float>(2.0 * std::pow(std::sin(0.5 * double(half)), 2));
       // a disk of uniform radiance L gives irradiance E = L * pi * sin^2(half) at normal incidence
       a.radiance_scale = 1.f / (kPi * std::sin(half) * std::sin(half));
-      p *= M_PI * scene_radius * scene_radius;
+      irradiance = luminance(a.rgb);
     }
     if (a.type == LightType::Sun || a.type == LightType::Sky)
       environment_.push_back(analytic_.size());
     analytic_.push_back(a);
-    power.push_back(p);
+    env_importance_.push_back(irradiance);
   }
-  double total = 0;
-  for (double p : power) total += p;
-  if (total <= 0) return;
-  double acc = 0;
-  for (double p : power) {
-    acc += p;
-    cdf_.push_back(static_cast<float>(acc / total));
-    pmf_.push_back(static_cast<float>(p / total));
-  }
-  cdf_.back() = 1.f;
 }
 
-float SceneLights::pick(float u, size_t& index) const {
-  auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  index = std::min<size_t>(static_cast<size_t>(it - cdf_.begin()), cdf_.size() - 1);
-  while (index > 0 && pmf_[index] == 0.f) --index;  // never a zero-power light
-  return pmf_[index];
+float SceneLights::importance(size_t k, const Vec3f& p) const {
+  if (k < groups_.size()) {
+    const Group& g = groups_[k];
+    return g.power / std::max((g.centre - p).squaredNorm(), g.radius2);
+  }
+  k -= groups_.size();
+  const Analytic& a = analytic_[k];
+  if (a.type != LightType::Point && a.type != LightType::Spot) return env_importance_[k];
+  const Vec3f w = a.position - p;
+  const float dist2 = w.squaredNorm();
+  if (a.max_distance > 0.f && dist2 > a.max_distance * a.max_distance) return 0.f;
+  float falloff = 1.f;
+  if (a.type == LightType::Spot) {
+    const float dist = std::sqrt(dist2);
+    falloff = dist > 0.f ? smoothstep(a.cos_outer, a.cos_inner, a.direction.dot(-w / dist)) : 0.f;
+  }
+  // 1 cm: closer than that the estimate stops growing (a lamp's own socket)
+  return luminance(a.rgb) * falloff / std::max(dist2, 1e-4f);
+}
+
+float SceneLights::totalImportance(const Vec3f& p) const {
+  float total = 0.f;
+  for (size_t k = 0; k < pickCount(); ++k) total += importance(k, p);
+  return total;
+}
+
+float SceneLights::pickProbability(const Vec3f& p, size_t k) const {
+  const float total = totalImportance(p);
+  return total > 0.f ? importance(k, p) / total : 0.f;
 }
 
 bool SceneLights::sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u,
                          LightSample& out) const {
-  if (cdf_.empty()) return false;
-  size_t i;
-  float pmf = pick(u_pick, i);
-  if (i >= triangles_.size()) {
-    if (!sampleAnalytic(analytic_[i - triangles_.size()], p, u, out)) return false;
+  const size_t n = pickCount();
+  if (n == 0) return false;
+  // Importances at p, then a linear scan (a handful to a few hundred lights per scene; a light
+  // tree would make this logarithmic for thousands).
+  thread_local std::vector<float> w;
+  w.resize(n);
+  float total = 0.f;
+  for (size_t k = 0; k < n; ++k) total += (w[k] = importance(k, p));
+  if (!(total > 0.f)) return false;
+  const float target = u_pick * total;
+  size_t k = 0;
+  for (float acc = 0.f; k < n; ++k) {
+    acc += w[k];
+    if (target < acc) break;
+  }
+  k = std::min(k, n - 1);                // u_pick rounding up to the total
+  while (w[k] == 0.f && k > 0) --k;      // never a light that cannot light p
+  const float pmf = w[k] / total;
+  if (k >= groups_.size()) {
+    if (!sampleAnalytic(analytic_[k - groups_.size()], p, u, out)) return false;
     out.pdf *= pmf;
     return true;
   }
+  const Group& g = groups_[k];
+  // the triangle by power within the group, reusing u.x (rescaled) for the choice
+  float ux = u.x();
+  size_t j = static_cast<size_t>(std::upper_bound(g.cdf.begin(), g.cdf.end(), ux) - g.cdf.begin());
+  j = std::min(j, g.count - 1);
+  const float lo = j ? g.cdf[j - 1] : 0.f, width = g.cdf[j] - lo;
+  ux = width > 0.f ? std::clamp((ux - lo) / width, 0.f, 0.99999994f) : 0.5f;
+  const size_t i = g.first + j;
   const EmissiveTriangle& e = triangles_[i];
-  float su = std::sqrt(u.x());
+  float su = std::sqrt(ux);
   Vec3f q = e.p0 + e.e1 * (1.f - su) + e.e2 * (su * u.y());
-  Vec3f w = q - p;
-  float dist2 = w.squaredNorm();
+  Vec3f wq = q - p;
+  float dist2 = wq.squaredNorm();
   if (dist2 <= 0.f) return false;
   out.dist = std::sqrt(dist2);
-  out.wi = w / out.dist;
+  out.wi = wq / out.dist;
   float cos_l = -e.normal.dot(out.wi);
   if (cos_l <= 0.f) return false;  // one-sided emitter seen from behind
   out.radiance = e.radiance;
-  out.pdf = pmf / e.area * dist2 / cos_l;
+  out.pdf = pmf * triangle_in_group_[i] / e.area * dist2 / cos_l;
   out.delta = false;
   return true;
 }
@@ -167,36 +225,46 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   return true;
 }
 
-float SceneLights::trianglePdf(size_t i, float dist, float cos_light) const {
+float SceneLights::trianglePdf(size_t i, const Vec3f& p, float dist, float cos_light) const {
   if (cos_light <= 0.f) return 0.f;
-  return pmf_[i] / triangles_[i].area * dist * dist / cos_light;
+  // the triangle's group: groups hold consecutive triangles, sorted by their first
+  auto it = std::upper_bound(groups_.begin(), groups_.end(), i,
+                             [](size_t t, const Group& g) { return t < g.first; });
+  if (it == groups_.begin()) return 0.f;
+  const size_t k = static_cast<size_t>(it - groups_.begin()) - 1;
+  if (i >= groups_[k].first + groups_[k].count) return 0.f;  // a group of no power
+  return pickProbability(p, k) * triangle_in_group_[i] / triangles_[i].area * dist * dist /
+         cos_light;
 }
 
-Vec3f SceneLights::environmentRadiance(const Vec3f& d, float& pdf) const {
+Vec3f SceneLights::environmentRadiance(const Vec3f& d, const Vec3f* p, float& pdf) const {
   Vec3f L = Vec3f::Zero();
   pdf = 0.f;
+  const float total = p && !environment_.empty() ? totalImportance(*p) : 0.f;
+  // the pick probability of analytic light k at p (0 when no receiver is given)
+  auto pmf = [&](size_t k) { return total > 0.f ? env_importance_[k] / total : 0.f; };
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
     if (a.envmap >= 0) {
       const EnvMapSkyLight& map = envmaps_[a.envmap];
       L += map.radiance(d);
-      pdf += pmf_[triangles_.size() + k] * map.pdf(d);
+      pdf += pmf(k) * map.pdf(d);
       continue;
     }
     if (a.sky >= 0) {
       const PreethamSkyLight& sky = skies_[a.sky];
       L += sky.radiance(d);
-      pdf += pmf_[triangles_.size() + k] * sky.pdf(d);
+      pdf += pmf(k) * sky.pdf(d);
       continue;
     }
     if (a.type == LightType::Sky) {
       L += a.rgb;
-      pdf += pmf_[triangles_.size() + k] / (4.f * kPi);
+      pdf += pmf(k) / (4.f * kPi);
       continue;
     }
     if (-a.direction.dot(d) < a.cos_max) continue;  // outside this sun's disk
     L += a.rgb * a.radiance_scale;
-    pdf += pmf_[triangles_.size() + k] / (2.f * kPi * a.one_minus_cos_max);
+    pdf += pmf(k) / (2.f * kPi * a.one_minus_cos_max);
   }
   return L;
 }

@@ -1,7 +1,14 @@
 #pragma once
 // Light sampling for next-event estimation: every light of the scene in one list (emissive
-// triangles, point, spot, sun and sky lights), picked with probability proportional to an
-// estimate of its power, so that 50+ lights cost one sample each, not one shadow ray per light.
+// objects, point, spot, sun and sky lights), one picked per sample, so that 50+ lights cost one
+// shadow ray, not one per light. The pick depends on the receiver p: each light's probability
+// is proportional to the irradiance it could give p if nothing were in the way (intensity x
+// spot falloff / d^2 for point and spot lights, power / d^2 for an emissive object, clamped
+// inside its bounds; the irradiance of a sun or sky facing it). A global power-proportional
+// pick (what this replaces) gave a ceiling spot of 8 W a probability of 4e-6 next to a sun
+// "lighting" the whole scene's cross-section: the lamp's light on nearby surfaces came from
+// one sample in 250,000, each 250,000 times too bright, the speckle of an apartment frame.
+// Within an emissive object a triangle is picked by its power.
 // A uniform sky is sampled uniformly on the sphere; a Preetham sky from a table of its luminance
 // over the upper hemisphere, an environment map from a table of its texels' luminance over the
 // sphere (sky.h), each with the same pdf for escaped rays (environmentRadiance).
@@ -23,6 +30,7 @@ struct EmissiveTriangle {
   Vec3f normal;      ///< unit geometric normal
   float area = 0.f;
   Vec3f radiance;
+  int group = 0;  ///< the emissive object it belongs to (consecutive triangles share it)
 };
 
 struct LightSample {
@@ -35,22 +43,29 @@ struct LightSample {
 
 class SceneLights {
  public:
-  /// Collects the lights that are on. scene_radius bounds the sun's power estimate.
+  /// Collects the lights that are on (scene_radius is no longer needed by the pick; kept for
+  /// the callers).
   SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles, float scene_radius);
 
-  bool empty() const { return cdf_.empty(); }
+  bool empty() const { return groups_.empty() && analytic_.empty(); }
   size_t triangleCount() const { return triangles_.size(); }
   const EmissiveTriangle& triangle(size_t i) const { return triangles_[i]; }
 
   /// Samples one light for a receiver at p; u_pick picks the light, u the point on it.
   /// Returns false when the sample carries nothing (back side, outside a spot cone or range).
   bool sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u, LightSample& out) const;
-  /// pdf (pick x solid angle) with which `sample` would choose the point of triangle i seen at
-  /// distance dist with cosine cos_light between its normal and the direction to the receiver.
-  float trianglePdf(size_t i, float dist, float cos_light) const;
+  /// pdf (pick x solid angle) with which `sample` for a receiver at p would choose the point of
+  /// triangle i seen at distance dist with cosine cos_light between its normal and the
+  /// direction to the receiver.
+  float trianglePdf(size_t i, const Vec3f& p, float dist, float cos_light) const;
   /// Radiance arriving from infinity along unit direction d (suns whose disk covers d, plus the
-  /// sky), and the pdf with which `sample` would have chosen that direction.
-  Vec3f environmentRadiance(const Vec3f& d, float& pdf) const;
+  /// sky), and (when p is given) the pdf with which `sample` for a receiver at *p would have
+  /// chosen that direction (0 otherwise).
+  Vec3f environmentRadiance(const Vec3f& d, const Vec3f* p, float& pdf) const;
+  /// Probability that `sample` for a receiver at p picks light `k` (emissive objects first,
+  /// then the analytic lights in scene order, those that are on), for tests.
+  float pickProbability(const Vec3f& p, size_t k) const;
+  size_t pickCount() const { return groups_.size() + analytic_.size(); }
 
  private:
   struct Analytic {
@@ -65,16 +80,28 @@ class SceneLights {
     int sky = -1;  // Preetham sky: index into skies_ (-1: a uniform sky of radiance rgb)
     int envmap = -1;  // environment-map sky: index into envmaps_
   };
+  /// An emissive object: its triangles [first, first + count), picked within by power.
+  struct Group {
+    size_t first = 0, count = 0;
+    Vec3f centre;
+    float radius2 = 0.f;  // squared half diagonal of its bounds: 1/d^2 is clamped inside
+    float power = 0.f;    // luminance of its flux, W
+    std::vector<float> cdf;  // per triangle, by power
+  };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                       LightSample& out) const;
-  float pick(float u, size_t& index) const;
+  /// Unoccluded-irradiance estimate of pick entry k (groups, then analytic) at p.
+  float importance(size_t k, const Vec3f& p) const;
+  float totalImportance(const Vec3f& p) const;
 
   std::vector<EmissiveTriangle> triangles_;
-  std::vector<Analytic> analytic_;  // index in the CDF: triangleCount() + i
+  std::vector<Group> groups_;
+  std::vector<float> triangle_in_group_;  // per triangle: its share of its group's power
+  std::vector<Analytic> analytic_;  // pick entry groups_.size() + i
   std::vector<PreethamSkyLight> skies_;
   std::vector<EnvMapSkyLight> envmaps_;
   std::vector<size_t> environment_;  // indices into analytic_ of suns and skies (escaped rays)
-  std::vector<float> cdf_, pmf_;
+  std::vector<float> env_importance_;  // per analytic_: the irradiance of a sun or sky (else 0)
 };
 
 }  // namespace inet

@@ -205,7 +205,8 @@ TEST(EnvMap, PdfIntegratesToOneAndMatchesSceneLights) {
     LightSample ls;
     if (!lights.sample(Vec3f::Zero(), rng(), {rng(), rng()}, ls)) continue;
     float pdf;
-    const Vec3f L = lights.environmentRadiance(ls.wi, pdf);
+    const Vec3f origin = Vec3f::Zero();
+    const Vec3f L = lights.environmentRadiance(ls.wi, &origin, pdf);
     EXPECT_NEAR(pdf, ls.pdf, 1e-5f * ls.pdf);
     EXPECT_TRUE(L.isApprox(ls.radiance, 1e-5f));
   }

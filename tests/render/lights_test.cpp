@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "render/fresnel.h"
+#include "render/lights.h"
 #include "render/renderer.h"
 #include "render/sky.h"
 #include "scene/primitives.h"
@@ -260,6 +261,82 @@ TEST(Lights, AreaLightThroughAPaneMatchesMisWithoutIt) {
   // the lamp subtends ~0.4 degrees from the floor point: T at normal incidence
   EXPECT_GT(open, 0.0);
   EXPECT_NEAR(behind, open * paneTransmission(1.0), 0.01 * open);
+}
+
+}  // namespace
+}  // namespace inet
+
+namespace inet {
+namespace {
+
+// The pick depends on the receiver: a lamp's light dominates next to it and the sun far from
+// it; a spot is never picked outside its cone; and the pdf that MIS computes for an emissive
+// triangle or the sky from the receiver is the one `sample` used there.
+TEST(LightPick, NearLightsWinNearbyAndPdfsAgreeWithSample) {
+  Scene s;
+  Light spot;
+  spot.name = "spot";
+  spot.type = LightType::Spot;
+  spot.position = Vec3(0, 0, 2.5);
+  spot.intensity = 8.f;
+  spot.cone_deg = 30.f;
+  spot.falloff_deg = 5.f;
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::Sun;
+  sun.direction = Vec3(0, 0.6, -0.8);
+  sun.intensity = 350.f;
+  Light sky;
+  sky.name = "sky";
+  sky.type = LightType::Sky;
+  sky.intensity = 5.f;
+  s.lights = {spot, sun, sky};
+  // one emissive quad (two triangles) of radiance 20 at z = 2.7, facing down
+  EmissiveTriangle a, b;
+  a.p0 = Vec3f(2, 2, 2.7f), a.e1 = Vec3f(0.3f, 0, 0), a.e2 = Vec3f(0, 0.3f, 0);
+  b.p0 = Vec3f(2.3f, 2.3f, 2.7f), b.e1 = Vec3f(-0.3f, 0, 0), b.e2 = Vec3f(0, -0.3f, 0);
+  for (EmissiveTriangle* t : {&a, &b}) {
+    t->area = 0.045f;
+    t->normal = Vec3f(0, 0, -1);
+    t->radiance = Vec3f::Constant(20.f);
+    t->group = 7;
+  }
+  const SceneLights lights(s, {a, b}, 50.f);
+  ASSERT_EQ(lights.pickCount(), 4u);  // the quad, spot, sun, sky
+  // 10 cm under the spot the spot is picked most of the time (a global pick by power would give
+  // its 8 W a chance of 1e-5 next to the sun's 350 W/m^2 over the scene); outside its cone never
+  EXPECT_GT(lights.pickProbability(Vec3f(0, 0, 2.4f), 1), 0.6f);
+  EXPECT_EQ(lights.pickProbability(Vec3f(3, 0, 2.4f), 1), 0.f);
+  // far away the sun and the sky take over
+  const Vec3f far(30, 30, 0);
+  EXPECT_GT(lights.pickProbability(far, 2) + lights.pickProbability(far, 3), 0.99f);
+  float sum = 0.f;
+  for (size_t k = 0; k < lights.pickCount(); ++k) sum += lights.pickProbability(far, k);
+  EXPECT_NEAR(sum, 1.f, 1e-6f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(0.f, 1.f);
+  int triangles = 0, skies = 0;
+  for (const Vec3f& p : {Vec3f(2.1f, 2.2f, 2.4f), Vec3f(0.2f, 0.f, 0.5f), far}) {
+    for (int i = 0; i < 4000; ++i) {
+      LightSample ls;
+      if (!lights.sample(p, U(rng), {U(rng), U(rng)}, ls) || ls.delta) continue;
+      float pdf = 0.f;
+      if (std::isinf(ls.dist)) {
+        const Vec3f L = lights.environmentRadiance(ls.wi, &p, pdf);
+        EXPECT_TRUE(L.isApprox(ls.radiance, 1e-5f));
+        ++skies;
+      } else {
+        // which triangle: the one the direction crosses at z = 2.7
+        const Vec3f q = p + ls.wi * ls.dist;
+        const size_t t = (q.x() - 2.f) + (q.y() - 2.f) < 0.3f ? 0 : 1;
+        pdf = lights.trianglePdf(t, p, ls.dist, ls.wi.z());  // -normal . wi
+        ++triangles;
+      }
+      ASSERT_NEAR(pdf, ls.pdf, 1e-4f * ls.pdf) << p.transpose();
+    }
+  }
+  EXPECT_GT(triangles, 100);
+  EXPECT_GT(skies, 100);
 }
 
 }  // namespace

@@ -285,25 +285,26 @@ TEST(PreethamSkyLight, SceneLightsSampleAndEscapedRaysAgree) {
   const SceneLights lights(s, {}, 5.f);
   Rng rng(7);
   int checked = 0;
+  const Vec3f p(0.5f, -1.f, 0.2f);
   for (int k = 0; k < 2000; ++k) {
     LightSample ls;
-    if (!lights.sample(Vec3f(0.5f, -1.f, 0.2f), rng(), Eigen::Vector2f(rng(), rng()), ls)) continue;
+    if (!lights.sample(p, rng(), Eigen::Vector2f(rng(), rng()), ls)) continue;
     ++checked;
     EXPECT_FALSE(ls.delta);
     EXPECT_TRUE(std::isinf(ls.dist));
     float pdf = -1.f;
-    const Vec3f L = lights.environmentRadiance(ls.wi, pdf);
+    const Vec3f L = lights.environmentRadiance(ls.wi, &p, pdf);
     ASSERT_EQ(ls.pdf, pdf) << "MIS needs the same pdf both ways";
     ASSERT_EQ(ls.radiance, L);
   }
   EXPECT_GT(checked, 1990);
   float pdf = -1.f;
-  EXPECT_EQ(lights.environmentRadiance(Vec3f(0.f, 0.6f, -0.8f), pdf), Vec3f::Zero());
+  EXPECT_EQ(lights.environmentRadiance(Vec3f(0.f, 0.6f, -0.8f), &p, pdf), Vec3f::Zero());
   EXPECT_EQ(pdf, 0.f) << "below the horizon";
 }
 
-// The light-picking power of a Preetham sky is pi r^2 x int Y(L) dw, like a uniform sky's
-// pi r^2 x 4 pi Y(L): a uniform sky beside it is picked in that proportion.
+// The light-picking weight of a Preetham sky is int Y(L) dw, like a uniform sky's 4 pi Y(L): a
+// uniform sky beside it is picked in that proportion, wherever the receiver is.
 TEST(PreethamSkyLight, PickedInProportionToItsRadiance) {
   Scene s;
   Light uniform;
