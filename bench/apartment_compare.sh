@@ -5,7 +5,10 @@
 # mean radiance region by region (bench/compare_renders.py).
 #
 #   bench/apartment_compare.sh OUT [SPP=16] [REF_SPP=512] [WIDTH=320]
-#   APARTMENTS="3:0 7:0 11:10" (seed:rooms, 0 = drawn) FRAMES=50 INET=build/apps/interiornet
+#   APARTMENTS="3:0 7:0 11:10" (seed:rooms, 0 = drawn) FRAMES=50 BOUNCES=8
+#   INET=build/apps/interiornet
+# Bounces: Cycles' max_bounces counts the bounces after the first hit (0 = direct light only),
+# ours counts scattering events (1 = direct light only): Cycles' N is our N + 1.
 # The frame is the one of the path's first FRAMES that shows the most classes
 # (bench/pick_frame.py).
 set -euo pipefail
@@ -18,6 +21,7 @@ F=$(python3 -c "print($W * 600 / 640)")
 INET=${INET:-build/apps/interiornet}
 HERE=$(cd "$(dirname "$0")" && pwd)
 FRAMES=${FRAMES:-50}
+BOUNCES=${BOUNCES:-8}
 mkdir -p "$OUT"
 secs() { /usr/bin/time -f %e "$@" 2>&1 >/dev/null | tail -1; }
 for spec in ${APARTMENTS:-3:0 7:0 11:10}; do
@@ -45,11 +49,11 @@ for spec in ${APARTMENTS:-3:0 7:0 11:10}; do
   # first samples (and fireflies), and each would be measured against part of itself
   render_ours() {  # spp out seed -> prints whole-process seconds
     secs "$INET" render --layout "$d/layout/layout.json" --camera "$d/camera.json" \
-      --spp "$1" --threads 2 --max-bounces 8 --seed "$3" --out "$2"
+      --spp "$1" --threads 2 --max-bounces $((BOUNCES + 1)) --seed "$3" --out "$2"
   }
   render_cycles() {  # spp out-stem seed -> prints whole-process seconds
     secs blender -b --factory-startup -P "$HERE/cycles_gltf.py" -- --gltf "$d/apt.gltf" \
-      --camera "$d/camera.json" --spp "$1" --threads 2 --max-bounces 8 --formats exr,png \
+      --camera "$d/camera.json" --spp "$1" --threads 2 --max-bounces "$BOUNCES" --formats exr,png \
       --seed "$3" --out "$2"
   }
   t_ours=$(render_ours "$SPP" "$d/ours_$SPP.exr" 0)

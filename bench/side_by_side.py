@@ -5,7 +5,8 @@
 
 Every image gets the same exposure (stops), is clipped to [0, 1] and sRGB-encoded, is scaled by
 nearest neighbour (each pixel stays visible), and is optionally cropped (pixels, from the top
-left), then the images are put side by side, left to right in the order given.
+left), then the images are put side by side, left to right in the order given. OUT ending in
+.jpg is written as JPEG, else PNG.
 """
 import argparse
 import sys
@@ -44,7 +45,7 @@ def main():
     out.colorspace_settings.name = "Non-Color"  # already encoded
     out.pixels = np.concatenate([row, np.ones((h, w, 1))], axis=2).ravel()
     out.filepath_raw = a.out
-    out.file_format = "PNG"
+    out.file_format = "JPEG" if a.out.lower().endswith((".jpg", ".jpeg")) else "PNG"
     out.save()
 
 
