@@ -19,7 +19,8 @@ importer's texture nodes:
   emission       added on the front side only (our emitters are one-sided)
 With --materials gltf the importer's Principled materials are rendered as they are.
 Lights: the importer's point, spot and sun lights (683 lm/W, as we export), made point-like
-(radius 0) and the sun given its angular diameter from the light's extras. The sky: the
+(radius 0), spots given the blend that makes Cycles' cone edge our smoothstep exactly, and the
+sun given its angular diameter, both from the light's extras. The sky: the
 equirectangular EXR the export baked (scene extras "sky_image") as the world.
 Camera: --camera (camera.json: width, height, fx, fy, cx, cy, cam_to_world or
 position/look_at/up) or else the file's camera. Sampling: fixed spp, no adaptive sampling, no
@@ -209,6 +210,13 @@ def setup_lights(scene):
         ld = ob.data
         if ld.type in ("POINT", "SPOT"):
             ld.shadow_soft_size = 0.0
+        if ld.type == "SPOT" and "cone_deg" in ld:
+            # Cycles: smoothstep over (1 - cos(half angle)) x blend in cosine; ours: smoothstep
+            # from cos(cone) to cos(cone - falloff). This blend makes the two the same curve.
+            outer = math.radians(float(ld["cone_deg"]))
+            inner = math.radians(max(0.0, float(ld["cone_deg"]) - float(ld["falloff_deg"])))
+            ld.spot_size = 2 * outer
+            ld.spot_blend = (math.cos(inner) - math.cos(outer)) / (1 - math.cos(outer))
         if ld.type == "SUN":
             ld.angle = math.radians(float(ld.get("angular_diameter_deg", 0.53)))
     return n
