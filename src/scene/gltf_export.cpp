@@ -487,6 +487,9 @@ class Exporter {
     cam.perspective.yfov = 2.0 * std::atan(c.height / (2.0 * c.fy));
     cam.perspective.aspectRatio = c.width * c.fy / (c.height * c.fx);
     cam.perspective.znear = 0.01;
+    // glTF allows no zfar (an infinite projection), but Assimp 5.2 then rejects the file
+    // ("mClipPlaneFar must be >= mClipPlaneNear"): say 1 km
+    cam.perspective.zfar = 1000.0;
     cam.extras = Value(Value::Object{{"width", Value(c.width)},
                                      {"height", Value(c.height)},
                                      {"fx", num(c.fx)},

@@ -144,12 +144,12 @@ double brightnessOf(const Attrs& a) {
 LightSetup lightSetupOf(const Scene& scene) {
   LightSetup setup;
   setup.lights = scene.lights;
-  std::map<std::string, bool> seen;
+  std::map<std::pair<std::string, std::string>, bool> seen;
   for (const Object& o : scene.objects) {
     const Material& m = scene.materials[o.material];
-    if (!m.isEmissive() || seen[o.name]) continue;
-    seen[o.name] = true;
-    setup.areas.push_back({o.name, m.emission, true});
+    if (!m.isEmissive() || seen[{o.name, o.part}]) continue;
+    seen[{o.name, o.part}] = true;
+    setup.areas.push_back({o.name, o.part, m.emission, true});
   }
   return setup;
 }
@@ -193,8 +193,9 @@ std::string lightXmlText(const Scene& scene, const std::string& path) {
     out += "/>\n";
   }
   for (const AreaLightEntry& a : setup.areas)
-    out += fmt::format("  <light type=\"AreaLight\" object=\"{}\" on=\"{}\" radiance=\"{}\"/>\n",
-                       attr(a.object), a.on ? "true" : "false", vec(a.radiance));
+    out += fmt::format("  <light type=\"AreaLight\" object=\"{}\"{} on=\"{}\" radiance=\"{}\"/>\n",
+                       attr(a.object), a.part.empty() ? "" : " part=\"" + attr(a.part) + "\"",
+                       a.on ? "true" : "false", vec(a.radiance));
   out += "</lights>\n";
   return out;
 }
@@ -225,6 +226,7 @@ LightSetup parseLightXml(const std::string& text, const std::string& path) {
     if (type == "AreaLight") {
       AreaLightEntry e;
       e.object = a.text("object");
+      if (a.has("part")) e.part = a.text("part");
       e.on = a.flag("on", true);
       const Vec3 r = a.vec3("radiance");
       if (r.minCoeff() < 0) a.fail("radiance", "must be >= 0");
@@ -295,12 +297,22 @@ LightSetup parseLightXml(const std::string& text, const std::string& path) {
 
 void applyLightSetup(Scene& scene, const LightSetup& setup, const std::string& where) {
   scene.lights = setup.lights;
+  std::vector<bool> emissive_before(scene.objects.size());
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    emissive_before[i] = scene.materials[scene.objects[i].material].isEmissive();
   for (size_t k = 0; k < setup.areas.size(); ++k) {
     const AreaLightEntry& e = setup.areas[k];
+    // which parts: the named one; else those already emissive (a lamp's lens, not its
+    // housing: the light.xml files before parts were written said only the object); else all
+    bool any_emissive = false;
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+      any_emissive = any_emissive || (scene.objects[i].name == e.object && emissive_before[i]);
     bool found = false;
-    for (Object& o : scene.objects) {
-      if (o.name != e.object) continue;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+      Object& o = scene.objects[i];
+      if (o.name != e.object || (!e.part.empty() && o.part != e.part)) continue;
       found = true;
+      if (e.part.empty() && any_emissive && !emissive_before[i]) continue;
       Material m = scene.materials[o.material];
       const Vec3f emission = e.on ? e.radiance : Vec3f::Zero();
       if (m.emission == emission) continue;
@@ -316,7 +328,9 @@ void applyLightSetup(Scene& scene, const LightSetup& setup, const std::string& w
     }
     if (!found)
       throw InputError(where, fmt::format("AreaLight[{}].object", k),
-                       fmt::format("no object is named '{}'", e.object));
+                       e.part.empty()
+                           ? fmt::format("no object is named '{}'", e.object)
+                           : fmt::format("no object '{}' has a part '{}'", e.object, e.part));
   }
   scene.validate(where);
 }

@@ -17,6 +17,9 @@ namespace inet {
 /// An emissive object's entry: its radiance and whether it is on.
 struct AreaLightEntry {
   std::string object;
+  /// The part of the object that glows (a lamp's lens, not its housing); "" = the object's
+  /// emissive parts, or all of its parts when none is emissive yet.
+  std::string part;
   Vec3f radiance = Vec3f::Zero();
   bool on = true;
   bool operator==(const AreaLightEntry&) const = default;
@@ -27,7 +30,8 @@ struct LightSetup {
   std::vector<AreaLightEntry> areas;
 };
 
-/// The scene's lights plus one AreaLight per emissive object instance (named by the object).
+/// The scene's lights plus one AreaLight per emissive part of an object (named by the object
+/// and the part).
 LightSetup lightSetupOf(const Scene& scene);
 /// The setup as light.xml text (fixed attribute order and number format); `path` is where it
 /// will be written (an envmap sky's image is given relative to its folder).
@@ -38,9 +42,10 @@ void saveLightXml(const Scene& scene, const std::string& path);
 LightSetup loadLightXml(const std::string& path);
 /// Parses light.xml text read from `path` (relative envmap images are found from its folder).
 LightSetup parseLightXml(const std::string& text, const std::string& path);
-/// Replaces the scene's analytic lights and sets each listed emissive object's emission (0 when
-/// off; objects sharing a material get their own copy). Throws InputError(where, ...) when an
-/// entry names an object the scene does not have.
+/// Replaces the scene's analytic lights and sets the emission of each listed object's parts (0
+/// when off; objects sharing a material get their own copy): the named part, or without one the
+/// parts that were emissive, or all parts when none was. Throws InputError(where, ...) when an
+/// entry names an object or part the scene does not have.
 void applyLightSetup(Scene& scene, const LightSetup& setup, const std::string& where);
 
 }  // namespace inet

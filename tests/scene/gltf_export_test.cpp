@@ -288,6 +288,11 @@ TEST(GltfExport, UnitsAxesTexcoordsAndMotion) {
     EXPECT_LT((qc * -Vec3::UnitZ() - Vec3(-3, 0, -0.5).normalized()).norm(), 1e-9);
   }
 
+  // Assimp (our importer) reads a file with a camera too
+  const Scene back = reimport(out);
+  EXPECT_EQ(back.objects.size(), s.objects.size());
+  EXPECT_EQ(back.lights.size(), 2u);
+
   // extensions declared
   std::set<std::string> used(m.extensionsUsed.begin(), m.extensionsUsed.end());
   EXPECT_TRUE(used.count("KHR_lights_punctual"));

@@ -150,8 +150,53 @@ TEST(LightXml, SwitchesAndRecoloursOneEmitter) {
   EXPECT_EQ(s.materials[s.objects[1].material].emission, Vec3f(1, 1, 4));
   EXPECT_FALSE(s.materials[s.objects[2].material].isEmissive());
   EXPECT_NE(s.objects[1].material, s.objects[2].material) << "each got its own copy";
-  setup.areas.push_back({"chandelier", Vec3f::Ones(), true});
+  setup.areas.push_back({"chandelier", "", Vec3f::Ones(), true});
   EXPECT_THROW(applyLightSetup(s, setup, "test"), InputError);
+}
+
+// A lamp is several parts of one name (housing, trim, lens): only its lens glows, whether the
+// light.xml names the part (as lightSetupOf writes it) or not (older files); a plain object
+// named by an AreaLight glows whole; a part that does not exist is an error.
+TEST(LightXml, OnlyTheGlowingPartOfALampGlows) {
+  Scene s = litScene();
+  Object housing = s.objects[1];
+  housing.material = 0;
+  housing.part = "can";
+  s.objects[1].part = "lens";
+  s.objects.push_back(housing);  // ceiling_light_1: lens (emissive) + can (white)
+  auto glowing = [](const Scene& sc) {
+    int n = 0;
+    for (const Object& o : sc.objects) n += sc.materials[o.material].isEmissive();
+    return n;
+  };
+  ASSERT_EQ(glowing(s), 2);
+  LightSetup setup = lightSetupOf(s);
+  ASSERT_EQ(setup.areas[0].part, "lens");
+  // through the XML text and back: the part is kept
+  const LightSetup reread = parseLightXml(lightXmlText(s, "mem.xml"), "mem.xml");
+  EXPECT_EQ(reread.areas, setup.areas);
+  Scene a = s;
+  applyLightSetup(a, reread, "test");
+  EXPECT_EQ(glowing(a), 2) << "the can must not glow";
+  // an older file: no part, the lens dimmed
+  LightSetup old = setup;
+  for (AreaLightEntry& e : old.areas) e.part.clear();
+  old.areas[0].radiance = Vec3f(1, 1, 1);
+  Scene b = s;
+  applyLightSetup(b, old, "test");
+  EXPECT_EQ(glowing(b), 2);
+  EXPECT_EQ(b.materials[b.objects[1].material].emission, Vec3f(1, 1, 1));
+  // a plain object turned into a light glows whole
+  LightSetup plain = setup;
+  plain.areas.push_back({"floor", "", Vec3f(2, 2, 2), true});
+  Scene c = s;
+  applyLightSetup(c, plain, "test");
+  EXPECT_EQ(glowing(c), 3);
+  // a part that is not there
+  LightSetup wrong = setup;
+  wrong.areas[0].part = "bulb";
+  Scene d = s;
+  EXPECT_THROW(applyLightSetup(d, wrong, "test"), InputError);
 }
 
 TEST(LightXml, BrightnessScalesEnergyAndRadiance) {
