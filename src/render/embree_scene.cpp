@@ -358,12 +358,7 @@ void EmbreeScene::buildLights(const Scene& scene) {
       triangles.push_back(e);
     }
   }
-  float radius = 1.f;
-  if (!scene.objects.empty()) {
-    auto [lo, hi] = scene.bounds();
-    radius = std::max(radius, static_cast<float>(0.5 * (hi - lo).norm()));
-  }
-  lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), radius);
+  lights_ = std::make_unique<SceneLights>(scene, std::move(triangles));
 }
 
 }  // namespace inet

@@ -21,10 +21,10 @@ float smoothstep(float a, float b, float x) {
 
 }  // namespace
 
-SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles,
-                         float /*scene_radius*/)
+SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles)
     : triangles_(std::move(triangles)) {
   triangle_in_group_.resize(triangles_.size());
+  group_of_.assign(triangles_.size(), -1);
   for (size_t i = 0; i < triangles_.size();) {
     Group g;
     g.first = i;
@@ -48,6 +48,7 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
       g.cdf.push_back(static_cast<float>(acc[k] / power));
       const double prev = k ? acc[k - 1] : 0.0;
       triangle_in_group_[g.first + k] = static_cast<float>((acc[k] - prev) / power);
+      group_of_[g.first + k] = static_cast<int>(groups_.size());
     }
     g.cdf.back() = 1.f;
     groups_.push_back(std::move(g));
@@ -112,37 +113,35 @@ float SceneLights::importance(size_t k, const Vec3f& p) const {
   return luminance(a.rgb) * falloff / std::max(dist2, 1e-4f);
 }
 
-float SceneLights::totalImportance(const Vec3f& p) const {
-  float total = 0.f;
-  for (size_t k = 0; k < pickCount(); ++k) total += importance(k, p);
-  return total;
+SceneLights::PickPoint SceneLights::pickAt(const Vec3f& p) const {
+  PickPoint at{p, 0.f};
+  for (size_t k = 0; k < pickCount(); ++k) at.total += importance(k, p);
+  return at;
 }
 
 float SceneLights::pickProbability(const Vec3f& p, size_t k) const {
-  const float total = totalImportance(p);
-  return total > 0.f ? importance(k, p) / total : 0.f;
+  const PickPoint at = pickAt(p);
+  return at.total > 0.f ? importance(k, p) / at.total : 0.f;
 }
 
-bool SceneLights::sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u,
+bool SceneLights::sample(const PickPoint& at, float u_pick, const Eigen::Vector2f& u,
                          LightSample& out) const {
   const size_t n = pickCount();
-  if (n == 0) return false;
-  // Importances at p, then a linear scan (a handful to a few hundred lights per scene; a light
-  // tree would make this logarithmic for thousands).
-  thread_local std::vector<float> w;
-  w.resize(n);
-  float total = 0.f;
-  for (size_t k = 0; k < n; ++k) total += (w[k] = importance(k, p));
-  if (!(total > 0.f)) return false;
-  const float target = u_pick * total;
+  if (n == 0 || !(at.total > 0.f)) return false;
+  // A linear scan, summing the importances in pickAt's order so that the last running sum is
+  // at.total exactly (a handful to a few hundred lights per scene; a light tree would make
+  // this logarithmic for thousands).
+  const Vec3f& p = at.p;
+  const float target = u_pick * at.total;
   size_t k = 0;
+  float w = 0.f;
   for (float acc = 0.f; k < n; ++k) {
-    acc += w[k];
+    acc += (w = importance(k, p));
     if (target < acc) break;
   }
-  k = std::min(k, n - 1);                // u_pick rounding up to the total
-  while (w[k] == 0.f && k > 0) --k;      // never a light that cannot light p
-  const float pmf = w[k] / total;
+  if (k == n) k = n - 1;  // u_pick rounding up to the total
+  while (w == 0.f && k > 0) w = importance(--k, p);  // never a light that cannot light p
+  const float pmf = w / at.total;
   if (k >= groups_.size()) {
     if (!sampleAnalytic(analytic_[k - groups_.size()], p, u, out)) return false;
     out.pdf *= pmf;
@@ -225,22 +224,17 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   return true;
 }
 
-float SceneLights::trianglePdf(size_t i, const Vec3f& p, float dist, float cos_light) const {
-  if (cos_light <= 0.f) return 0.f;
-  // the triangle's group: groups hold consecutive triangles, sorted by their first
-  auto it = std::upper_bound(groups_.begin(), groups_.end(), i,
-                             [](size_t t, const Group& g) { return t < g.first; });
-  if (it == groups_.begin()) return 0.f;
-  const size_t k = static_cast<size_t>(it - groups_.begin()) - 1;
-  if (i >= groups_[k].first + groups_[k].count) return 0.f;  // a group of no power
-  return pickProbability(p, k) * triangle_in_group_[i] / triangles_[i].area * dist * dist /
-         cos_light;
+float SceneLights::trianglePdf(size_t i, const PickPoint& at, float dist, float cos_light) const {
+  const int k = group_of_[i];
+  if (cos_light <= 0.f || k < 0 || !(at.total > 0.f)) return 0.f;
+  const float pick = importance(static_cast<size_t>(k), at.p) / at.total;
+  return pick * triangle_in_group_[i] / triangles_[i].area * dist * dist / cos_light;
 }
 
-Vec3f SceneLights::environmentRadiance(const Vec3f& d, const Vec3f* p, float& pdf) const {
+Vec3f SceneLights::environmentRadiance(const Vec3f& d, const PickPoint* at, float& pdf) const {
   Vec3f L = Vec3f::Zero();
   pdf = 0.f;
-  const float total = p && !environment_.empty() ? totalImportance(*p) : 0.f;
+  const float total = at ? at->total : 0.f;
   // the pick probability of analytic light k at p (0 when no receiver is given)
   auto pmf = [&](size_t k) { return total > 0.f ? env_importance_[k] / total : 0.f; };
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray

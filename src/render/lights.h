@@ -43,25 +43,34 @@ struct LightSample {
 
 class SceneLights {
  public:
-  /// Collects the lights that are on (scene_radius is no longer needed by the pick; kept for
-  /// the callers).
-  SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles, float scene_radius);
+  /// Collects the lights that are on.
+  SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles);
 
   bool empty() const { return groups_.empty() && analytic_.empty(); }
   size_t triangleCount() const { return triangles_.size(); }
   const EmissiveTriangle& triangle(size_t i) const { return triangles_[i]; }
 
-  /// Samples one light for a receiver at p; u_pick picks the light, u the point on it.
+  /// A receiver and the sum of every light's importance there: computed once per path vertex
+  /// (pickAt), used by `sample` and, at the next vertex, by the MIS pdfs of what the BSDF
+  /// sample hit.
+  struct PickPoint {
+    Vec3f p = Vec3f::Zero();
+    float total = 0.f;
+  };
+  PickPoint pickAt(const Vec3f& p) const;
+
+  /// Samples one light for a receiver; u_pick picks the light, u the point on it.
   /// Returns false when the sample carries nothing (back side, outside a spot cone or range).
-  bool sample(const Vec3f& p, float u_pick, const Eigen::Vector2f& u, LightSample& out) const;
-  /// pdf (pick x solid angle) with which `sample` for a receiver at p would choose the point of
-  /// triangle i seen at distance dist with cosine cos_light between its normal and the
+  bool sample(const PickPoint& at, float u_pick, const Eigen::Vector2f& u,
+              LightSample& out) const;
+  /// pdf (pick x solid angle) with which `sample` for the receiver `at` would choose the point
+  /// of triangle i seen at distance dist with cosine cos_light between its normal and the
   /// direction to the receiver.
-  float trianglePdf(size_t i, const Vec3f& p, float dist, float cos_light) const;
+  float trianglePdf(size_t i, const PickPoint& at, float dist, float cos_light) const;
   /// Radiance arriving from infinity along unit direction d (suns whose disk covers d, plus the
-  /// sky), and (when p is given) the pdf with which `sample` for a receiver at *p would have
+  /// sky), and (when `at` is given) the pdf with which `sample` for that receiver would have
   /// chosen that direction (0 otherwise).
-  Vec3f environmentRadiance(const Vec3f& d, const Vec3f* p, float& pdf) const;
+  Vec3f environmentRadiance(const Vec3f& d, const PickPoint* at, float& pdf) const;
   /// Probability that `sample` for a receiver at p picks light `k` (emissive objects first,
   /// then the analytic lights in scene order, those that are on), for tests.
   float pickProbability(const Vec3f& p, size_t k) const;
@@ -92,11 +101,11 @@ class SceneLights {
                       LightSample& out) const;
   /// Unoccluded-irradiance estimate of pick entry k (groups, then analytic) at p.
   float importance(size_t k, const Vec3f& p) const;
-  float totalImportance(const Vec3f& p) const;
 
   std::vector<EmissiveTriangle> triangles_;
   std::vector<Group> groups_;
   std::vector<float> triangle_in_group_;  // per triangle: its share of its group's power
+  std::vector<int> group_of_;             // per triangle: its group, -1 when of no power
   std::vector<Analytic> analytic_;  // pick entry groups_.size() + i
   std::vector<PreethamSkyLight> skies_;
   std::vector<EnvMapSkyLight> envmaps_;

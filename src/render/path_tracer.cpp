@@ -291,7 +291,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   // from that vertex to the ray's origin.
   bool no_mis = true;
   float straight = 0.f;
-  Vec3f light_p = Vec3f::Zero();  // where the vertex before `ray` sampled lights (its MIS pdfs)
+  SceneLights::PickPoint light_at;  // where the vertex before `ray` sampled lights (MIS pdfs)
   int panes = 0;  // panes passed straight through (at most kMaxPanes per path)
   for (int bounce = 0, vertex = 0;; ++bounce, ++vertex) {
     const bool from_camera = vertex == 0;  // the camera's own ray (not one through a pane)
@@ -306,7 +306,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     }
     if (!hit) {
       float sun_pdf;
-      Vec3f sun = scene.lights().environmentRadiance(ray.d, no_mis ? nullptr : &light_p, sun_pdf);
+      Vec3f sun = scene.lights().environmentRadiance(ray.d, no_mis ? nullptr : &light_at, sun_pdf);
       if (sun.maxCoeff() > 0.f) {
         float w = no_mis ? 1.f : powerHeuristic(prev_bsdf_pdf, sun_pdf);
         L += w * throughput.cwiseProduct(sun);
@@ -326,7 +326,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (!no_mis) {
         size_t li = static_cast<size_t>(s.first_light) + rh.hit.primID;
         w = powerHeuristic(prev_bsdf_pdf,
-                           scene.lights().trianglePdf(li, light_p, straight + t, cos_emit));
+                           scene.lights().trianglePdf(li, light_at, straight + t, cos_emit));
       }
       L += w * throughput.cwiseProduct(s.emission);
       if (from_camera) seen_emission = s.emission;
@@ -347,8 +347,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     // in front, transmission goes through).
     const Vec3f n_face = cos_emit > 0.f ? ng : Vec3f(-ng);
     const Vec3f ns_face = cos_emit > 0.f ? sp.ns : Vec3f(-sp.ns);
-    Frame3 frame;
-    Vec3f wo;
+    Frame3 frame{Vec3f::UnitX(), Vec3f::UnitY(), Vec3f::UnitZ()};  // set below unless Lambertian
+    Vec3f wo = Vec3f::UnitZ();
     if (!lambert) {
       frame = Frame3::fromNormal(sp.ns);
       wo = frame.toLocal(-ray.d);
@@ -366,8 +366,11 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     // light samples are taken from just above the surface on the side they light (for a
     // Lambertian, the side facing the ray), so that distances and cosines match the shadow ray
     const Vec3f p_face = p + n_face * eps;
-    const Vec3f p_light = lambert ? p_face : p;
-    if (!isDelta(bsdf) && scene.lights().sample(p_light, u_select_rr.x(), u_light, ls)) {
+    // one importance pass per vertex, none for a delta BSDF (it samples no light, and no MIS
+    // weight is needed after it)
+    SceneLights::PickPoint at;
+    if (!isDelta(bsdf)) at = scene.lights().pickAt(lambert ? p_face : p);
+    if (!isDelta(bsdf) && scene.lights().sample(at, u_select_rr.x(), u_light, ls)) {
       Vec3f f_cos = Vec3f::Zero();
       float bsdf_pdf = 0.f;
       if (lambert) {
@@ -406,7 +409,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (prev_bsdf_pdf <= 0.f) break;
       no_mis = false;
       straight = 0.f;
-      light_p = p_light;
+      light_at = at;
       throughput = throughput.cwiseProduct(sp.albedo);
     } else {
       std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
@@ -421,7 +424,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         prev_bsdf_pdf = bs->pdf;
         no_mis = bs->delta;
         straight = 0.f;
-        light_p = p_light;
+        light_at = at;
       }
       throughput = throughput.cwiseProduct(bs->weight);
     }

@@ -187,7 +187,7 @@ TEST(EnvMap, PdfIntegratesToOneAndMatchesSceneLights) {
   test::TempDir dir("envmap");
   Scene s;
   s.lights = {envMapLight(dir, oneBrightTexel())};
-  const SceneLights lights(s, {}, 1.f);
+  const SceneLights lights(s, {});
   const EnvMapSkyLight map(oneBrightTexel(), Mat3::Identity(), 1.f);
   double total = 0;  // int pdf dw over the sphere
   const int nt = 400, np = 800;
@@ -203,10 +203,10 @@ TEST(EnvMap, PdfIntegratesToOneAndMatchesSceneLights) {
   Rng rng(3);
   for (int i = 0; i < 1000; ++i) {
     LightSample ls;
-    if (!lights.sample(Vec3f::Zero(), rng(), {rng(), rng()}, ls)) continue;
+    const SceneLights::PickPoint at = lights.pickAt(Vec3f::Zero());
+    if (!lights.sample(at, rng(), {rng(), rng()}, ls)) continue;
     float pdf;
-    const Vec3f origin = Vec3f::Zero();
-    const Vec3f L = lights.environmentRadiance(ls.wi, &origin, pdf);
+    const Vec3f L = lights.environmentRadiance(ls.wi, &at, pdf);
     EXPECT_NEAR(pdf, ls.pdf, 1e-5f * ls.pdf);
     EXPECT_TRUE(L.isApprox(ls.radiance, 1e-5f));
   }

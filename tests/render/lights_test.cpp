@@ -301,7 +301,7 @@ TEST(LightPick, NearLightsWinNearbyAndPdfsAgreeWithSample) {
     t->radiance = Vec3f::Constant(20.f);
     t->group = 7;
   }
-  const SceneLights lights(s, {a, b}, 50.f);
+  const SceneLights lights(s, {a, b});
   ASSERT_EQ(lights.pickCount(), 4u);  // the quad, spot, sun, sky
   // 10 cm under the spot the spot is picked most of the time (a global pick by power would give
   // its 8 W a chance of 1e-5 next to the sun's 350 W/m^2 over the scene); outside its cone never
@@ -319,17 +319,18 @@ TEST(LightPick, NearLightsWinNearbyAndPdfsAgreeWithSample) {
   for (const Vec3f& p : {Vec3f(2.1f, 2.2f, 2.4f), Vec3f(0.2f, 0.f, 0.5f), far}) {
     for (int i = 0; i < 4000; ++i) {
       LightSample ls;
-      if (!lights.sample(p, U(rng), {U(rng), U(rng)}, ls) || ls.delta) continue;
+      const SceneLights::PickPoint at = lights.pickAt(p);
+      if (!lights.sample(at, U(rng), {U(rng), U(rng)}, ls) || ls.delta) continue;
       float pdf = 0.f;
       if (std::isinf(ls.dist)) {
-        const Vec3f L = lights.environmentRadiance(ls.wi, &p, pdf);
+        const Vec3f L = lights.environmentRadiance(ls.wi, &at, pdf);
         EXPECT_TRUE(L.isApprox(ls.radiance, 1e-5f));
         ++skies;
       } else {
         // which triangle: the one the direction crosses at z = 2.7
         const Vec3f q = p + ls.wi * ls.dist;
         const size_t t = (q.x() - 2.f) + (q.y() - 2.f) < 0.3f ? 0 : 1;
-        pdf = lights.trianglePdf(t, p, ls.dist, ls.wi.z());  // -normal . wi
+        pdf = lights.trianglePdf(t, at, ls.dist, ls.wi.z());  // -normal . wi
         ++triangles;
       }
       ASSERT_NEAR(pdf, ls.pdf, 1e-4f * ls.pdf) << p.transpose();

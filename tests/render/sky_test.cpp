@@ -282,24 +282,24 @@ TEST(PreethamSkyLight, ChiSquareDetectsAWrongPdf) {
 TEST(PreethamSkyLight, SceneLightsSampleAndEscapedRaysAgree) {
   Scene s;
   s.lights = {preethamLight(3, 25, 80.f)};
-  const SceneLights lights(s, {}, 5.f);
+  const SceneLights lights(s, {});
   Rng rng(7);
   int checked = 0;
-  const Vec3f p(0.5f, -1.f, 0.2f);
+  const SceneLights::PickPoint at = lights.pickAt(Vec3f(0.5f, -1.f, 0.2f));
   for (int k = 0; k < 2000; ++k) {
     LightSample ls;
-    if (!lights.sample(p, rng(), Eigen::Vector2f(rng(), rng()), ls)) continue;
+    if (!lights.sample(at, rng(), Eigen::Vector2f(rng(), rng()), ls)) continue;
     ++checked;
     EXPECT_FALSE(ls.delta);
     EXPECT_TRUE(std::isinf(ls.dist));
     float pdf = -1.f;
-    const Vec3f L = lights.environmentRadiance(ls.wi, &p, pdf);
+    const Vec3f L = lights.environmentRadiance(ls.wi, &at, pdf);
     ASSERT_EQ(ls.pdf, pdf) << "MIS needs the same pdf both ways";
     ASSERT_EQ(ls.radiance, L);
   }
   EXPECT_GT(checked, 1990);
   float pdf = -1.f;
-  EXPECT_EQ(lights.environmentRadiance(Vec3f(0.f, 0.6f, -0.8f), &p, pdf), Vec3f::Zero());
+  EXPECT_EQ(lights.environmentRadiance(Vec3f(0.f, 0.6f, -0.8f), &at, pdf), Vec3f::Zero());
   EXPECT_EQ(pdf, 0.f) << "below the horizon";
 }
 
@@ -312,13 +312,13 @@ TEST(PreethamSkyLight, PickedInProportionToItsRadiance) {
   uniform.type = LightType::Sky;
   uniform.intensity = 3.f;
   s.lights = {uniform, preethamLight(4, 50, 200.f)};
-  const SceneLights lights(s, {}, 2.f);
+  const SceneLights lights(s, {});
   const PreethamSkyLight sky(s.lights[1]);
   const double S = hemisphereIntegral(
       [&](const Vec3& d) { return luminance(sky.radiance(d.cast<float>()).cast<double>()); });
   const double expected_pmf = 4 * kPi * 3.0 / (4 * kPi * 3.0 + S);
   LightSample ls;  // u_pick 0 picks the first light: the uniform sky, pdf = pmf / (4 pi)
-  ASSERT_TRUE(lights.sample(Vec3f::Zero(), 0.f, Eigen::Vector2f(0.3f, 0.3f), ls));
+  ASSERT_TRUE(lights.sample(lights.pickAt(Vec3f::Zero()), 0.f, Eigen::Vector2f(0.3f, 0.3f), ls));
   EXPECT_NEAR(ls.pdf * 4 * kPi, expected_pmf, 1e-3 * expected_pmf);
 }
 
