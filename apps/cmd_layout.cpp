@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <functional>
 #include <memory>
 
 #include <fmt/format.h>
@@ -17,7 +16,7 @@
 #include "core/progress.h"
 #include "procedural/apartment.h"
 #include "render/camera.h"
-#include "render/sky.h"
+#include "render/lights.h"
 #include "scene/assimp_importer.h"
 #include "scene/layout_json.h"
 #include "scene/front3d_importer.h"
@@ -193,25 +192,13 @@ void layoutStats(const std::string& in, const std::string& out) {
 
 /// The radiance of the scene's skies (summed) over every direction, as an equirectangular image
 /// in Blender's convention (GltfExportOptions::sky_image); empty when the scene has no sky.
-ImageF bakeSky(const Scene& s, const std::string& where, int width) {
-  std::vector<std::function<Vec3f(const Vec3f&)>> skies;
-  std::vector<std::shared_ptr<void>> keep;
-  for (const Light& l : s.lights) {
-    if (l.type != LightType::Sky || !l.on) continue;
-    if (l.sky_model == SkyModel::Preetham) {
-      auto sky = std::make_shared<PreethamSkyLight>(l);
-      keep.push_back(sky);
-      skies.push_back([sky](const Vec3f& d) { return sky->radiance(d); });
-    } else if (l.sky_model == SkyModel::EnvMap) {
-      auto sky = std::make_shared<EnvMapSkyLight>(l, where);
-      keep.push_back(sky);
-      skies.push_back([sky](const Vec3f& d) { return sky->radiance(d); });
-    } else {
-      const Vec3f c = l.rgbIntensity();
-      skies.push_back([c](const Vec3f&) { return c; });
-    }
-  }
-  if (skies.empty()) return {};
+/// The renderer's own environment lookup, with the suns left out: they are exported as lights.
+ImageF bakeSky(const Scene& s, int width) {
+  Scene skies;
+  for (const Light& l : s.lights)
+    if (l.type == LightType::Sky && l.on) skies.lights.push_back(l);
+  if (skies.lights.empty()) return {};
+  const SceneLights lights(skies, {});
   const int height = width / 2;
   ImageF img(width, height, 3);
   for (int y = 0; y < height; ++y)
@@ -222,9 +209,9 @@ ImageF bakeSky(const Scene& s, const std::string& where, int width) {
       const Vec3f d(static_cast<float>(std::cos(el) * std::cos(az)),
                     static_cast<float>(std::cos(el) * std::sin(az)),
                     static_cast<float>(std::sin(el)));
-      Vec3f sum = Vec3f::Zero();
-      for (const auto& f : skies) sum += f(d);
-      for (int c = 0; c < 3; ++c) img.at(x, y, c) = sum[c];
+      float pdf;
+      const Vec3f L = lights.environmentRadiance(d, nullptr, pdf);
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = L[c];
     }
   return img;
 }
@@ -263,7 +250,7 @@ void exportLayout(const ExportArgs& a) {
     c.T_world_camera = cam.T_world_camera.matrix();
     opt.camera = c;
   }
-  const ImageF sky = bakeSky(s, a.scene.path, a.sky_width);
+  const ImageF sky = bakeSky(s, a.sky_width);
   if (!sky.data.empty()) {
     opt.sky_image = fs::path(a.out).stem().string() + "_sky.exr";
     writeExr(fs::absolute(a.out).parent_path() / opt.sky_image, sky, {"R", "G", "B"});

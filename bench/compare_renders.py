@@ -17,21 +17,15 @@ Prints one line "CMP_JSON {...}".
 """
 import argparse
 import json
+import os
 import sys
 
-import bpy
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_images import load, load_labels  # noqa: E402
+
 REGIONS = {"wall": [1], "floor": [2], "ceiling": [22], "window": [9]}
-
-
-def load(path, non_color=False):
-    img = bpy.data.images.load(path, check_existing=False)
-    if non_color:
-        img.colorspace_settings.name = "Non-Color"
-    w, h = img.size
-    px = np.array(img.pixels[:], dtype=np.float64).reshape(h, w, img.channels)
-    return px
 
 
 def despeckle(lum):
@@ -52,7 +46,7 @@ def main():
     ap.add_argument("--refs", nargs=2)
     ap.add_argument("--json")
     a = ap.parse_args(argv)
-    label = np.rint(load(a.label, non_color=True)[:, :, 0] * 255).astype(int)
+    label = load_labels(a.label)
     masks = {k: np.isin(label, v) for k, v in REGIONS.items()}
     masks["other"] = ~np.any(np.stack(list(masks.values())), axis=0)
     masks["all"] = np.ones_like(label, dtype=bool)

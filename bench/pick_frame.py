@@ -6,17 +6,17 @@ of the pixels, ties going to the earlier frame (run inside Blender's Python, whi
 Prints "PICK <index> <classes>". bench/apartment_compare.sh uses it to skip frames that look
 at a bare wall.
 """
+import os
 import sys
 
-import bpy
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_images import load_labels  # noqa: E402
 
 best, best_n = 0, -1
 for i, f in enumerate(sys.argv[sys.argv.index("--") + 1:]):
-    im = bpy.data.images.load(f)
-    im.colorspace_settings.name = "Non-Color"
-    w, h = im.size
-    lab = np.rint(np.array(im.pixels[:]).reshape(h, w, im.channels)[:, :, 0] * 255).astype(int)
+    lab = load_labels(f)
     counts = np.bincount(lab.ravel(), minlength=41)
     n = int((counts[1:] >= 0.005 * lab.size).sum())
     if n > best_n:

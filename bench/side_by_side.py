@@ -9,10 +9,14 @@ left), then the images are put side by side, left to right in the order given. O
 .jpg is written as JPEG, else PNG.
 """
 import argparse
+import os
 import sys
 
 import bpy
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_images import load  # noqa: E402
 
 
 def srgb(x):
@@ -30,9 +34,7 @@ def main():
     a = ap.parse_args(sys.argv[sys.argv.index("--") + 1:])
     tiles = []
     for f in a.images:
-        im = bpy.data.images.load(f)
-        w, h = im.size
-        px = np.array(im.pixels[:]).reshape(h, w, im.channels)[::-1, :, :3]  # row 0 = top
+        px = load(f)[:, :, :3]
         if a.crop:
             x0, y0, cw, ch = (int(v) for v in a.crop.split(","))
             px = px[y0:y0 + ch, x0:x0 + cw]

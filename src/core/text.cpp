@@ -1,5 +1,8 @@
 #include "core/text.h"
 
+#include <cctype>
+#include <filesystem>
+
 #include <fmt/format.h>
 
 namespace inet {
@@ -22,6 +25,12 @@ std::string listNames(const std::vector<std::string>& names, size_t most) {
   for (size_t i = 0; i < names.size() && i < most; ++i) s += (i ? ", " : "") + names[i];
   if (names.size() > most) s += fmt::format(", ... ({} more)", names.size() - most);
   return s;
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 }  // namespace inet

@@ -12,4 +12,7 @@ std::vector<std::string> splitWhitespace(const std::string& line);
 /// counts without growing with the file.
 std::string listNames(const std::vector<std::string>& names, size_t most = 8);
 
+/// The file name's extension in lower case, with its dot (".obj", ".glb"), "" if none.
+std::string lowerExtension(const std::string& path);
+
 }  // namespace inet

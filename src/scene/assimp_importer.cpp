@@ -74,12 +74,6 @@ void checkAxes(double scale, char up, const std::string& file, const std::string
     throw InputError(file, field, fmt::format("up axis must be 'y' or 'z', got '{}'", up));
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext;
-}
-
 /// Assimp's file system, but for one file whose text is given (an OBJ file rewritten by
 /// prepassObj): the MTL files and textures it names are still read from its folder.
 class PatchedFileSystem : public Assimp::DefaultIOSystem {

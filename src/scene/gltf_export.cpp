@@ -18,6 +18,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "scene/nyu40.h"
 
 namespace inet {
@@ -63,8 +64,7 @@ Mesh tessellateSphere(const Mesh& in) {
 }
 
 std::string mimeOf(const fs::path& p) {
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(p.string());
   if (ext == ".png") return "image/png";
   if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
   return "";
@@ -623,9 +623,7 @@ Vec3f metalBaseColor(const std::string& metal) {
 GltfExportReport exportGltf(const Scene& scene, const std::string& path,
                             const GltfExportOptions& opt) {
   const fs::path out = fs::absolute(path);
-  std::string ext = out.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != (opt.binary ? ".glb" : ".gltf"))
+  if (lowerExtension(path) != (opt.binary ? ".glb" : ".gltf"))
     throw InputError(path, "--out", opt.binary ? "a binary glTF file ends in .glb"
                                                : "a glTF file ends in .gltf");
   std::error_code ec;

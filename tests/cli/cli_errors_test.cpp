@@ -290,5 +290,23 @@ TEST(Cli, LayoutExportWritesGltfThatReadsBackTheSame) {
   EXPECT_EQ(readTree(dir.path()), before);
 }
 
+// A layout with daylight: its sky is baked into <stem>_sky.exr beside the file, named in the
+// scene's extras.
+TEST(Cli, LayoutExportBakesTheSky) {
+  TempDir dir("layout_export_sky");
+  ASSERT_EQ(runInterinet("layout generate --seed 1 --rooms 1 --texture-size 64 --out " +
+                         (dir / "apt").string())
+                .exit_code,
+            0);
+  const RunResult r =
+      runInterinet("layout export " + (dir / "apt" / "layout.json").string() + " --sky-width 64 "
+                   "--out " + (dir / "a.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("the sky baked into a_sky.exr"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "a_sky.exr"));
+  const std::string glb = readTextFile((dir / "a.glb").string());
+  EXPECT_NE(glb.find("\"sky_image\":\"a_sky.exr\""), std::string::npos);
+}
+
 }  // namespace
 }  // namespace inet::test

@@ -157,6 +157,29 @@ std::vector<T> accessorData(const tinygltf::Model& m, int index) {
   return out;
 }
 
+/// The one node `pick` accepts (the test fails when there is none or several).
+template <class F>
+const tinygltf::Node& node(const tinygltf::Model& m, F pick) {
+  const tinygltf::Node* found = nullptr;
+  for (const auto& n : m.nodes) {
+    if (!pick(n)) continue;
+    EXPECT_EQ(found, nullptr) << "two nodes match";
+    found = &n;
+  }
+  if (!found) {
+    ADD_FAILURE() << "no node matches";
+    static const tinygltf::Node none;
+    return none;
+  }
+  return *found;
+}
+
+Quat rotationOf(const tinygltf::Node& n) {
+  EXPECT_EQ(n.rotation.size(), 4u) << n.name;
+  if (n.rotation.size() != 4) return Quat::Identity();
+  return Quat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+}
+
 Scene smallScene() {
   Scene s;
   Mesh quad = makePrimitive("quad", {}, "test", "floor");
@@ -220,8 +243,7 @@ TEST(GltfExport, UnitsAxesTexcoordsAndMotion) {
 
   // the root turns Z-up into Y-up: our +z becomes glTF's +y
   ASSERT_EQ(m.nodes[0].name, "interiornet_world");
-  const auto& q = m.nodes[0].rotation;
-  const Quat root(q[3], q[0], q[1], q[2]);
+  const Quat root = rotationOf(m.nodes[0]);
   EXPECT_LT((root * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);
 
   // photometric lights: 683 lm/W; colour normalised to its largest channel
@@ -232,11 +254,9 @@ TEST(GltfExport, UnitsAxesTexcoordsAndMotion) {
   EXPECT_EQ(m.lights[1].type, "directional");
   EXPECT_NEAR(m.lights[1].intensity, 683.0 * 100.0, 1e-6);
   // the sun's node -z is our direction
-  for (const auto& n : m.nodes) {
-    if (n.name != "sun") continue;
-    const Quat qs(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    EXPECT_LT((qs * -Vec3::UnitZ() - Vec3(0, 0.6, -0.8)).norm(), 1e-9);
-  }
+  const tinygltf::Node& sun_node = node(m, [](const tinygltf::Node& n) { return n.name == "sun"; });
+  const Quat qs = rotationOf(sun_node);
+  EXPECT_LT((qs * -Vec3::UnitZ() - Vec3(0, 0.6, -0.8)).norm(), 1e-9);
 
   // emission as radiance: factor x strength
   const auto& lamp = m.materials[2];
@@ -282,11 +302,8 @@ TEST(GltfExport, UnitsAxesTexcoordsAndMotion) {
   // the camera looks along glTF -z = our look direction
   ASSERT_EQ(m.cameras.size(), 1u);
   EXPECT_NEAR(m.cameras[0].perspective.yfov, 2 * std::atan(240.0 / 600.0), 1e-12);
-  for (const auto& n : m.nodes) {
-    if (n.camera != 0) continue;
-    const Quat qc(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    EXPECT_LT((qc * -Vec3::UnitZ() - Vec3(-3, 0, -0.5).normalized()).norm(), 1e-9);
-  }
+  const Quat qc = rotationOf(node(m, [](const tinygltf::Node& n) { return n.camera == 0; }));
+  EXPECT_LT((qc * -Vec3::UnitZ() - Vec3(-3, 0, -0.5).normalized()).norm(), 1e-9);
 
   // Assimp (our importer) reads a file with a camera too
   const Scene back = reimport(out);
