@@ -30,6 +30,7 @@
 #include "render/shutter.h"
 #include "sensors/imu.h"
 #include "sensors/imu_io.h"
+#include "sensors/temporal_reuse.h"
 #include "trajectory/builtin_trajectory.h"
 #include "trajectory/formats.h"
 #include "trajectory/free_space.h"
@@ -65,6 +66,7 @@ struct GenerateArgs {
   std::string out = "out";
   bool progress = true;
   bool denoise = false;
+  int temporal = 1;  ///< temporal reuse window in frames (1 = off)
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
   LensArgs lens;
@@ -209,6 +211,12 @@ void validateArgs(const GenerateArgs& a) {
     throw InputError("", "--exposure-ms", "must be in 0..10000");
   if (!(a.readout_ms >= 0 && a.readout_ms <= 10000))
     throw InputError("", "--readout-ms", "must be in 0..10000");
+  if (a.temporal < 1 || a.temporal > 64)
+    throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
+  if (a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
+    throw InputError("", "--temporal",
+                     "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
+                     "0): a blurred pixel has no single surface point to carry to the next frame");
   if (a.sequence.empty() || a.sequence.find('/') != std::string::npos || a.sequence == "." ||
       a.sequence == "..")
     throw InputError("", "--sequence", "must be a plain folder name");
@@ -304,6 +312,12 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                  {"rgb", a.hdr ? "linear radiance -> cam0 EXR (float32); -> camera response -> "
                                  "clamp -> sRGB 8-bit PNG"
                                : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
+  m["render"]["denoise"] = opt.denoise ? opt.denoise_options.describe() : "off";
+  if (a.temporal > 1) {
+    TemporalReuseOptions t;
+    t.window = a.temporal;
+    m["render"]["temporal_reuse"] = t.describe() + " (sensors/temporal_reuse.h)";
+  }
   m["seed"] = opt.seed;
   m["shutter"] = {{"exposure_ms", a.exposure_ms},
                   {"readout_ms", a.readout_ms},
@@ -541,7 +555,6 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   SequenceWriter writer(spec, traj, formats);
 
   if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
-  const Pose T_cam0_cam1{Quat::Identity(), Vec3(a.stereo, 0, 0)};
   const std::vector<InstanceBox> boxes = want.boxes ? instanceBoxes(scene) : std::vector<InstanceBox>{};
   std::vector<std::vector<InstanceVisibility>> visible(want.boxes ? traj.size() : 0);
   Shutter shutter;
@@ -554,6 +567,60 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   for (size_t k = 0; k < traj.size(); ++k) skipped += complete[k] = writer.frameComplete(k);
   if (skipped > 0)
     std::fprintf(stderr, "resuming: %zu of %zu frames already complete\n", skipped, traj.size());
+
+  // Temporal reuse (sensors/temporal_reuse.h), one per camera: frame k's colour depends on
+  // frames k - window + 1 .. k, so after a gap (frames a killed run finished) the frames before
+  // the next one are rendered again first, and a resumed run writes the same bytes.
+  const bool temporal = a.temporal > 1 && has(passes, Pass::Rgb);
+  std::optional<TemporalReuse> reuse, reuse1;
+  TemporalReuseOptions reuse_opt;
+  reuse_opt.window = a.temporal;
+  if (temporal) {
+    reuse.emplace(scene, lens, reuse_opt);
+    if (a.stereo > 0) reuse1.emplace(scene, lens, reuse_opt);
+  }
+  size_t reuse_next = 0;  // the frame the reuse windows expect next
+  RgbLayers layers;
+  Frame warm;
+  const Pose T_cam0_cam1{Quat::Identity(), Vec3(a.stereo, 0, 0)};
+  auto exposureOf = [&](size_t k, const Pose& T_rig) {
+    CameraExposure ex = exposureAt(cam, k, shutter);
+    ex.T_world_camera_open = ex.T_world_camera_open * T_rig;
+    ex.T_world_camera_close = ex.T_world_camera_close * T_rig;
+    for (auto& [dt, pose] : ex.knots) pose = pose * T_rig;
+    return ex;
+  };
+  // renders one camera's frame k into f (colour filtered as asked: reuse, then the denoiser)
+  auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f) {
+    const CameraExposure ex = exposureOf(k, T_rig);
+    if (!r) {
+      renderer.render(lens, ex, opt, idx, f);
+      return;
+    }
+    renderer.render(lens, ex, opt, idx, f, &layers);
+    r->add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+    if (opt.denoise) denoiseRgb(f, layers, opt.denoise_options);
+  };
+  auto warmUp = [&](size_t k) {  // the frames before k that k's colour reuses
+    if (!temporal || reuse_next == k) return;
+    reuse->clear();
+    if (reuse1) reuse1->clear();
+    RenderOptions colour = opt;
+    colour.passes = static_cast<PassMask>(Pass::Rgb);
+    for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(a.temporal - 1)); j < k; ++j) {
+      const auto idx = static_cast<uint32_t>(j);
+      CameraExposure ex = exposureOf(j, Pose{});
+      renderer.render(lens, ex, colour, idx, warm, &layers);
+      reuse->add(warm, layers, ex.T_world_camera_open,
+                 static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+      if (reuse1) {
+        ex = exposureOf(j, T_cam0_cam1);
+        renderer.render(lens, ex, colour, idx | 0x80000000u, warm, &layers);
+        reuse1->add(warm, layers, ex.T_world_camera_open,
+                    static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+      }
+    }
+  };
 
   ProgressBar bar(static_cast<int64_t>(traj.size()), "frames", a.progress);
   Frame frame, frame1;   // cam0, cam1
@@ -581,22 +648,20 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
         deriveFramePasses(renderer, scene, lens, passes, depth_noise, a.seed, noise_frame, self,
                           previous ? &*previous : nullptr, next ? &*next : nullptr, f);
       };
-      renderer.render(lens, exposureAt(cam, k, shutter), opt, idx, frame);
+      warmUp(k);
+      renderColour(k, Pose{}, idx, temporal ? &*reuse : nullptr, frame);
       derive(Pose{}, idx, frame);
       if (respond) shown = a.response.apply(frame.rgb, opt.seed, idx);
       if (a.stereo > 0) {
         // cam1: every pose of the exposure moved by the baseline; its own random numbers
         const uint32_t idx1 = idx | 0x80000000u;
-        CameraExposure ex1 = exposureAt(cam, k, shutter);
-        ex1.T_world_camera_open = ex1.T_world_camera_open * T_cam0_cam1;
-        ex1.T_world_camera_close = ex1.T_world_camera_close * T_cam0_cam1;
-        for (auto& [dt, pose] : ex1.knots) pose = pose * T_cam0_cam1;
-        renderer.render(lens, ex1, opt, idx1, frame1);
+        renderColour(k, T_cam0_cam1, idx1, temporal ? &*reuse1 : nullptr, frame1);
         derive(T_cam0_cam1, idx1, frame1);
         if (respond) shown1 = a.response.apply(frame1.rgb, opt.seed, idx1);
       }
       writer.writeFrame(k, frame, respond ? &shown : nullptr, a.stereo > 0 ? &frame1 : nullptr,
                         respond && a.stereo > 0 ? &shown1 : nullptr);
+      reuse_next = k + 1;
     } else if (want.boxes) {
       // a frame a killed run finished: its instance image again (one ray per pixel)
       RenderOptions ro;
@@ -706,6 +771,12 @@ void registerGenerate(CLI::App& app) {
   cmd->add_flag("--denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered); off by default");
+  cmd->add_option("--temporal", a->temporal,
+                  "temporal reuse: average each surface point's diffuse light over the last N "
+                  "frames that saw it, reprojected exactly through the ground truth (depth, "
+                  "instances, object motion); speculars, lights in view and newly seen points "
+                  "keep their own frame's samples; before --denoise. Needs a global shutter "
+                  "without blur (docs/denoise.md, sensors/temporal_reuse.h); default 1 = off");
   cmd->add_flag("--allow-dark", a->allow_dark,
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "

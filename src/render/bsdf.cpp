@@ -278,6 +278,29 @@ BsdfEval evalBsdfPdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi) {
   return {Vec3f::Zero(), 0.0f};
 }
 
+Vec3f evalBsdfDiffuse(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi) {
+  if (std::abs(wo.z()) < kMinCos) return Vec3f::Zero();
+  switch (p.type) {
+    case BsdfType::Lambertian:
+    case BsdfType::Translucent:
+      return evalBsdfPdf(p, wo, wi).value;
+    case BsdfType::Plastic: {
+      // the base term of evalPlastic alone
+      if (wo.z() * wi.z() <= 0.0f) return Vec3f::Zero();
+      const float eta = std::max(p.ior, 1.0f);
+      const float f_o = fresnelDielectric(std::abs(wo.z()), eta);
+      const float f_i = fresnelDielectric(std::abs(wi.z()), eta);
+      const float diffuse = (1.0f - f_o) * (1.0f - f_i) / (1.0f - fresnelDielectricAverage(eta));
+      return p.albedo * (diffuse * std::abs(wi.z()) * kInvPi);
+    }
+    case BsdfType::Conductor:
+    case BsdfType::Dielectric:
+    case BsdfType::ThinDielectric:
+      return Vec3f::Zero();
+  }
+  return Vec3f::Zero();
+}
+
 Vec3f evalBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi) {
   return evalBsdfPdf(p, wo, wi).value;
 }

@@ -123,6 +123,12 @@ struct BsdfEval {
 
 /// f(wo, wi) * |cos theta_i| (the cosine is included); 0 for delta lobes.
 Vec3f evalBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
+/// The view-independent part of evalBsdf: the diffuse lobes (Lambertian and Translucent whole,
+/// Plastic's base under its coating), 0 for specular families. Temporal reuse (sensors/
+/// temporal_reuse.h) carries only light reflected through this part from frame to frame. The
+/// Plastic base keeps its (1 - F(cos_o)) coating factor, which changes by well under 1 % over
+/// the few degrees a camera turns around a point in a reuse window.
+Vec3f evalBsdfDiffuse(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
 /// Solid-angle pdf with which sampleBsdf(p, wo, ...) returns wi; 0 for delta lobes.
 float pdfBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
 BsdfEval evalBsdfPdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);

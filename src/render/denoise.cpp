@@ -480,4 +480,12 @@ ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b) {
   return out;
 }
 
+void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& options) {
+  // filter only the light reflected by the surfaces; lights in view stay sharp
+  ImageF& rgb = frame.rgb;
+  for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] -= layers.emission.data[i];
+  rgb = denoise(rgb, frame.albedo, frame.normal, frame.depth_z, &layers.variance, options);
+  for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] += layers.emission.data[i];
+}
+
 }  // namespace inet

@@ -38,6 +38,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "render/frame.h"
 
 namespace inet {
 
@@ -72,5 +73,22 @@ ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, co
 /// channel: ((A - B) / 2)^2, the one-degree-of-freedom unbiased estimate of Var((A + B) / 2).
 /// It is very noisy; denoise() smooths the variance with a 3x3 Gaussian before using it.
 ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b);
+
+/// The colour pass in the layers of IntegratorOutputs (render/integrator.h): rgb = emission +
+/// diffuse + rest, for a caller that filters them itself (temporal reuse along a sequence, then the denoiser). Every
+/// image has 3 channels and the frame's size.
+struct RgbLayers {
+  ImageF emission;          ///< light emitted by the first surface seen (kept out of filters)
+  ImageF variance;          ///< variance of the mean of rgb - emission (the denoiser's guide)
+  ImageF diffuse;           ///< reflected through the first surface's diffuse lobes
+  ImageF diffuse_variance;  ///< variance of the mean of diffuse
+  ImageF rest_variance;     ///< variance of the mean of rgb - emission - diffuse
+  ImageF albedo;            ///< mean first-surface albedo over the pixel's samples
+};
+
+/// Denoises frame.rgb - layers.emission, guided by the frame's albedo, normal and z-depth and by
+/// layers.variance, and adds the emission back (what Renderer::render does with
+/// RenderOptions::denoise). The frame must carry those guides (rendered with layers).
+void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& options);
 
 }  // namespace inet

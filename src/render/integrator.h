@@ -103,16 +103,33 @@ struct RenderContext {
   RenderStats* stats = nullptr;
 };
 
+/// What an integrator writes besides the colour, each optional (nullptr: not wanted). Every image
+/// has 3 channels and the camera's size and is allocated by the caller. With e = emission and
+/// d = diffuse, rgb = e + d + rest, where
+///   e    is the light emitted by the first surface seen (lights in view: never filtered),
+///   d    is the light the first surface reflects through its view-independent (diffuse) lobes
+///        (bsdf.h evalBsdfDiffuse): what temporal reuse may carry from frame to frame,
+///   rest is what it reflects or transmits through specular lobes (mirrors, coatings, glass).
+/// Variances are per-pixel variances of the mean, from the same samples.
+struct IntegratorOutputs {
+  ImageF* emission = nullptr;
+  ImageF* variance = nullptr;          ///< of rgb - emission (the denoiser's guide)
+  ImageF* diffuse = nullptr;
+  ImageF* diffuse_variance = nullptr;  ///< of diffuse
+  ImageF* rest_variance = nullptr;     ///< of rgb - emission - diffuse
+  /// The mean over the pixel's samples of the first surface's diffuse reflectance (0 where a
+  /// sample sees nothing): the footprint's albedo, which `diffuse` divides by exactly (the
+  /// albedo pass is the pixel centre's only).
+  ImageF* albedo = nullptr;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
-  /// Renders linear RGB radiance into `rgb` (3 channels, camera size, already allocated) and,
-  /// for the denoiser when not null: `emission`, the part of rgb emitted by the first surface
-  /// seen (lights in view, to be kept out of the filter), and `variance`, the per-pixel
-  /// variance of the mean of the rest. Must be deterministic whatever the thread count.
-  virtual void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance,
-                      ImageF* emission) const = 0;
+  /// Renders linear RGB radiance into `rgb` (3 channels, camera size, already allocated) and the
+  /// layers `out` asks for. Must be deterministic whatever the thread count.
+  virtual void render(const RenderContext& ctx, ImageF& rgb, const IntegratorOutputs& out) const = 0;
 };
 
 /// Names of the registered integrators.

@@ -48,8 +48,8 @@ class PathTracer final : public Integrator {
  public:
   std::string name() const override { return "path"; }
 
-  void render(const RenderContext& ctx, ImageF& rgb, ImageF* variance,
-              ImageF* emission) const override {
+  void render(const RenderContext& ctx, ImageF& rgb,
+              const IntegratorOutputs& out) const override {
     const CameraIntrinsics& K = ctx.lens.K;
     const int spp = ctx.options.spp;
     // angle one pixel subtends (fx, fy are pixels per radian for every lens model)
@@ -71,7 +71,7 @@ class PathTracer final : public Integrator {
         for (int by = y_begin; by < y_end; by += 4)
           for (int bx = x_begin; bx < x_end; bx += 4)
             renderBlock(ctx, bx, by, std::min(bx + 4, x_end), std::min(by + 4, y_end), ictx,
-                        pixel_spread, rgb, variance, emission, tile_rays);
+                        pixel_spread, rgb, out, tile_rays);
       }
       if (ctx.stats) ctx.stats->rays += tile_rays;
     };
@@ -82,8 +82,8 @@ class PathTracer final : public Integrator {
  private:
   /// Renders pixels [x0, x1) x [y0, y1) (at most 4 x 4) with packets of camera rays.
   void renderBlock(const RenderContext& ctx, int x0, int y0, int x1, int y1,
-                   RTCIntersectContext& ictx, float pixel_spread, ImageF& rgb, ImageF* variance,
-                   ImageF* emission, uint64_t& rays) const {
+                   RTCIntersectContext& ictx, float pixel_spread, ImageF& rgb,
+                   const IntegratorOutputs& out, uint64_t& rays) const {
     const CameraIntrinsics& K = ctx.lens.K;
     const int spp = ctx.options.spp;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
@@ -99,6 +99,8 @@ class PathTracer final : public Integrator {
       uint32_t pixel = 0;
       bool inside = false;
       Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
+      Vec3f sum_d = Vec3f::Zero(), sum2_d = Vec3f::Zero(), sum2_rest = Vec3f::Zero();
+      Vec3f sum_albedo = Vec3f::Zero();
       uint32_t hashes[PixelSampler::kMaxPairs];
     };
     Lane lanes[16];
@@ -171,27 +173,39 @@ class PathTracer final : public Integrator {
         first.hit.primID = rh.hit.primID[k];
         first.hit.geomID = rh.hit.geomID[k];
         first.hit.instID[0] = rh.hit.instID[0][k];
-        Vec3f le;
-        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, rays, &first);
+        Vec3f le, d, albedo;
+        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, d, albedo, rays, &first);
         Lane& l = lanes[k];
         l.sum += v;
         l.sum_le += le;
         Vec3f reflected = v - le;  // the variance guide describes what gets filtered
         l.sum2 += reflected.cwiseProduct(reflected);
+        l.sum_d += d;
+        l.sum_albedo += albedo;
+        l.sum2_d += d.cwiseProduct(d);
+        const Vec3f rest = reflected - d;
+        l.sum2_rest += rest.cwiseProduct(rest);
       }
     }
     const float n = static_cast<float>(spp);
+    // unbiased sample variance of the mean of a sum's samples, from their sum and sum of squares
+    auto varianceOfMean = [&](float sum, float sum2) {
+      return spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
+    };
     for (const Lane& l : lanes) {
       if (!l.inside) continue;
-      for (int c = 0; c < 3; ++c) rgb.at(l.x, l.y, c) = l.sum[c] / n;
-      if (emission)
-        for (int c = 0; c < 3; ++c) emission->at(l.x, l.y, c) = l.sum_le[c] / n;
-      if (variance) {  // unbiased sample variance of the reflected part, divided by n
-        for (int c = 0; c < 3; ++c) {
-          float r = l.sum[c] - l.sum_le[c];
-          variance->at(l.x, l.y, c) =
-              spp > 1 ? std::max(0.f, (l.sum2[c] - r * r / n) / (n - 1.f)) / n : 0.f;
-        }
+      for (int c = 0; c < 3; ++c) {
+        rgb.at(l.x, l.y, c) = l.sum[c] / n;
+        if (out.emission) out.emission->at(l.x, l.y, c) = l.sum_le[c] / n;
+        const float reflected = l.sum[c] - l.sum_le[c];
+        if (out.variance) out.variance->at(l.x, l.y, c) = varianceOfMean(reflected, l.sum2[c]);
+        if (out.diffuse) out.diffuse->at(l.x, l.y, c) = l.sum_d[c] / n;
+        if (out.albedo) out.albedo->at(l.x, l.y, c) = l.sum_albedo[c] / n;
+        if (out.diffuse_variance)
+          out.diffuse_variance->at(l.x, l.y, c) = varianceOfMean(l.sum_d[c], l.sum2_d[c]);
+        if (out.rest_variance)
+          out.rest_variance->at(l.x, l.y, c) =
+              varianceOfMean(reflected - l.sum_d[c], l.sum2_rest[c]);
       }
     }
   }
@@ -269,17 +283,28 @@ class PathTracer final : public Integrator {
     return Vec3f::Zero();  // more panes than any window has: treat as blocked
   }
 
-  /// hit (directly visible lights), which the denoiser must leave alone.
+  /// hit (directly visible lights), which the denoiser must leave alone; `diffuse` receives the
+  /// part reflected through the first surface's diffuse lobes and `first_albedo` that surface's
+  /// albedo (IntegratorOutputs).
   /// `rays` counts the rays traced.
   /// `pixel_spread` is the angle of one pixel (radians), for texture footprints. `first`, when
   /// given, is the camera ray's hit, already traced (in a packet) and counted.
   Vec3f radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                 Vec3f& seen_emission, uint64_t& rays, const RTCRayHit* first = nullptr) const;
+                 Vec3f& seen_emission, Vec3f& diffuse, Vec3f& first_albedo, uint64_t& rays,
+                 const RTCRayHit* first = nullptr) const;
 };
 
 Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                           Vec3f& seen_emission, uint64_t& rays, const RTCRayHit* first) const {
+                           Vec3f& seen_emission, Vec3f& diffuse, Vec3f& first_albedo,
+                           uint64_t& rays, const RTCRayHit* first) const {
   seen_emission = Vec3f::Zero();
+  diffuse = Vec3f::Zero();
+  first_albedo = Vec3f::Zero();
+  // The diffuse share of the first surface (scattering vertex 0): its light sample adds
+  // f_diffuse / f of its contribution to `diffuse` at once; everything gathered after its BSDF
+  // sample (L - L_at_first) is split by that direction's f_diffuse / f, `share`, at the end.
+  Vec3f share = Vec3f::Zero(), L_at_first = Vec3f::Zero();
+  bool first_scattered = false;
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
   float path_length = 0.f;    // metres travelled so far (for the texture footprint)
@@ -338,6 +363,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
                   pixel_spread * path_length, sp);
     const BsdfParams& bsdf = sp.bsdf;
+    if (!first_scattered) first_albedo = sp.albedo;
     const bool lambert = bsdf.type == BsdfType::Lambertian;
     // Lambertian (the common case) keeps a fast path: two-sided, normal turned to face the ray.
     // Other BSDFs work in the frame of the shading normal (which lies on the geometric normal's
@@ -397,6 +423,13 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
           L += throughput.cwiseProduct(f_cos.cwiseProduct(ls.radiance).cwiseProduct(through)) *
                (w / ls.pdf);
+          if (!first_scattered) {
+            const Vec3f f_diffuse =
+                lambert ? f_cos : evalBsdfDiffuse(bsdf, wo, frame.toLocal(ls.wi));
+            diffuse += throughput.cwiseProduct(
+                           f_diffuse.cwiseProduct(ls.radiance).cwiseProduct(through)) *
+                       (w / ls.pdf);
+          }
         }
       }
     }
@@ -407,6 +440,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (n_face.dot(wi) <= 0.f) break;  // below the geometric surface (shading normal)
       prev_bsdf_pdf = std::max(ns_face.dot(wi), 0.f) / kPi;
       if (prev_bsdf_pdf <= 0.f) break;
+      if (!first_scattered) share = Vec3f::Ones();
       no_mis = false;
       straight = 0.f;
       light_at = at;
@@ -416,6 +450,10 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (!bs || bs->pdf <= 0.f) break;
       wi = frame.toWorld(bs->wi).normalized();
       if (!consistent(wi, bs->wi.z())) break;
+      if (!first_scattered && !bs->delta) {
+        const Vec3f f = evalBsdf(bsdf, wo, bs->wi), f_diffuse = evalBsdfDiffuse(bsdf, wo, bs->wi);
+        for (int c = 0; c < 3; ++c) share[c] = f[c] > 0.f ? std::min(1.f, f_diffuse[c] / f[c]) : 0.f;
+      }
       if (bsdf.type == BsdfType::ThinDielectric && bs->transmission && panes < kMaxPanes) {
         straight += t;  // through the pane: the MIS state of the vertex before it stays, and
         ++panes;        // it is not a bounce (a window does not shorten the path)
@@ -428,6 +466,10 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       }
       throughput = throughput.cwiseProduct(bs->weight);
     }
+    if (!first_scattered) {
+      first_scattered = true;
+      L_at_first = L;
+    }
     if (throughput.maxCoeff() <= 0.f) break;
     // Russian roulette from the third bounce on. Survival probability sqrt(max throughput)
     // rather than the throughput itself: fewer paths die young, so less variance for the
@@ -439,6 +481,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     }
     ray = Ray{offset(wi), wi, ray.time};
   }
+  if (first_scattered) diffuse += share.cwiseProduct(L - L_at_first);
   return L;
 }
 

@@ -15,7 +15,8 @@ Renderer::Renderer(const Scene& scene, const std::string& integrator)
 Renderer::~Renderer() = default;
 
 void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
-                      const RenderOptions& options, uint32_t frame_index, Frame& frame) const {
+                      const RenderOptions& options, uint32_t frame_index, Frame& frame,
+                      RgbLayers* layers) const {
   const CameraIntrinsics& K = lens.K;
   const Pose& T_world_camera = exposure.T_world_camera_open;
   // moving objects go where the window puts them; the exposure matters to the integrator and
@@ -26,11 +27,17 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   const PassMask kAlbedo = static_cast<PassMask>(Pass::Albedo);
   const bool shading = has(options.passes, Pass::Shading);
   const bool rgb = has(options.passes, Pass::Rgb) || shading;  // shading is derived from rgb
+  const bool denoising = rgb && options.denoise && layers == nullptr;
   // Ground truth the RGB stage needs besides what was asked (denoiser guides, the albedo that
-  // shading divides by) is traced in the same pass and left unflagged in frame.passes.
+  // shading divides by, what the caller's filters need) is traced in the same pass and left
+  // unflagged in frame.passes.
   PassMask helpers = 0;
-  if (rgb && options.denoise)
+  if (denoising)
     helpers |= kAlbedo | static_cast<PassMask>(Pass::Normal) | static_cast<PassMask>(Pass::DepthZ);
+  if (rgb && layers)
+    helpers |= kAlbedo | static_cast<PassMask>(Pass::Normal) | static_cast<PassMask>(Pass::DepthZ) |
+               static_cast<PassMask>(Pass::DepthRay) | static_cast<PassMask>(Pass::Instance) |
+               static_cast<PassMask>(Pass::Label);
   if (shading) helpers |= kAlbedo;
   inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes | helpers, frame, moving);
   frame.passes &= ~helpers | options.passes;
@@ -40,19 +47,27 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     frame.shading = {};
     return;
   }
-  if (frame.rgb.width != K.width || frame.rgb.height != K.height || frame.rgb.channels != 3)
-    frame.rgb = ImageF(K.width, K.height, 3);
+  auto allocate = [&](ImageF& image) {
+    if (image.width != K.width || image.height != K.height || image.channels != 3)
+      image = ImageF(K.width, K.height, 3);
+  };
+  allocate(frame.rgb);
   RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
-  if (!options.denoise) {
-    integrator_->render(ctx, frame.rgb, nullptr, nullptr);
+  if (layers) {
+    for (ImageF* image : {&layers->emission, &layers->variance, &layers->diffuse,
+                          &layers->diffuse_variance, &layers->rest_variance, &layers->albedo})
+      allocate(*image);
+    integrator_->render(ctx, frame.rgb,
+                        {&layers->emission, &layers->variance, &layers->diffuse,
+                         &layers->diffuse_variance, &layers->rest_variance, &layers->albedo});
+  } else if (!denoising) {
+    integrator_->render(ctx, frame.rgb, {});
   } else {
-    ImageF variance(K.width, K.height, 3), emission(K.width, K.height, 3);
-    integrator_->render(ctx, frame.rgb, &variance, &emission);
-    // filter only the light reflected by the surfaces; lights in view stay sharp
-    for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] -= emission.data[i];
-    frame.rgb = denoise(frame.rgb, frame.albedo, frame.normal, frame.depth_z, &variance,
-                        options.denoise_options);
-    for (size_t i = 0; i < frame.rgb.data.size(); ++i) frame.rgb.data[i] += emission.data[i];
+    RgbLayers own;
+    allocate(own.emission);
+    allocate(own.variance);
+    integrator_->render(ctx, frame.rgb, {&own.emission, &own.variance});
+    denoiseRgb(frame, own, options.denoise_options);
   }
   if (has(options.passes, Pass::Rgb)) frame.passes |= static_cast<PassMask>(Pass::Rgb);
   if (shading) {

@@ -25,7 +25,15 @@ class Renderer {
   /// A moving `exposure` gives motion blur (and rolling shutter when its readout time is set) in
   /// RGB; ground truth is traced per row from the pose at the middle of that row's exposure.
   void render(const LensModel& lens, const CameraExposure& exposure, const RenderOptions& options,
-              uint32_t frame_index, Frame& frame) const;
+              uint32_t frame_index, Frame& frame) const {
+    render(lens, exposure, options, frame_index, frame, nullptr);
+  }
+  /// The same, and with `layers` not null: frame.rgb is left unfiltered (options.denoise is
+  /// ignored), `layers` receives its parts, and the frame also carries the guides the caller's
+  /// filters need (albedo, normal, z-depth, ray depth, label, instance), flagged in frame.passes only
+  /// when options.passes asked for them.
+  void render(const LensModel& lens, const CameraExposure& exposure, const RenderOptions& options,
+              uint32_t frame_index, Frame& frame, RgbLayers* layers) const;
   void render(const LensModel& lens, const Pose& T_world_camera, const RenderOptions& options,
               uint32_t frame_index, Frame& frame) const {
     render(lens, CameraExposure::fixed(T_world_camera), options, frame_index, frame);

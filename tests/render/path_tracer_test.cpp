@@ -1,11 +1,13 @@
 // Path tracer checks: a closed furnace with a known analytic radiance, the direct-lighting term
-// against a closed-form irradiance, and bit-identical images for 1 and 2 threads.
+// against a closed-form irradiance, bit-identical images for 1 and 2 threads, and the split of
+// the colour into emission, diffuse and the rest (IntegratorOutputs).
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
 
 #include "render/renderer.h"
+#include "scene/default_scene.h"
 #include "scene/primitives.h"
 
 namespace inet {
@@ -298,6 +300,84 @@ TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   Frame c;
   r.render(K, pose, opt, 8, c);
   EXPECT_NE(a.rgb.data, c.rgb.data);
+}
+
+/// The built-in room with every material made `type` (emitters keep their emission), rendered
+/// with layers: the raw colour and its parts.
+struct Split {
+  Frame frame;
+  RgbLayers layers;
+};
+Split renderSplit(MaterialType type, float roughness) {
+  Scene scene = makeDefaultScene();
+  for (Material& m : scene.materials) {
+    m.type = type;
+    m.roughness = roughness;
+  }
+  Renderer r(scene);
+  Split s;
+  RenderOptions o;
+  o.spp = 4;
+  o.passes = static_cast<PassMask>(Pass::Rgb);
+  const Pose T = Pose::lookAt(Vec3(0.6, 0.6, 1.5), Vec3(3.5, 3, 1.0), Vec3::UnitZ());
+  r.render(LensModel::pinhole(CameraIntrinsics::centred(64, 48, 50.0)), CameraExposure::fixed(T),
+           o, 0, s.frame, &s.layers);
+  return s;
+}
+
+TEST(PathTracer, TheDiffuseLayerIsAllOfLambertianLightSomeOfPlasticsAndNoneOfAMirrors) {
+  // Lambertian: everything reflected is diffuse (same samples, up to rounding); the colour is
+  // the same as without layers
+  const Split lambert = renderSplit(MaterialType::Lambertian, 0.f);
+  double reflected = 0, diffuse = 0;
+  for (size_t i = 0; i < lambert.frame.rgb.data.size(); ++i) {
+    const float r = lambert.frame.rgb.data[i] - lambert.layers.emission.data[i];
+    ASSERT_NEAR(lambert.layers.diffuse.data[i], r, 1e-5f * (1.f + std::abs(r))) << i;
+    ASSERT_NEAR(lambert.layers.rest_variance.data[i], 0.f, 1e-6f * (1.f + r * r)) << i;
+    reflected += r;
+  }
+  EXPECT_GT(reflected, 0.0);
+  // Plastic: the coating's reflection is not diffuse; the base is (0 <= diffuse <= reflected
+  // per pixel on average, strictly less in total)
+  const Split plastic = renderSplit(MaterialType::Plastic, 0.3f);
+  reflected = 0;
+  for (size_t i = 0; i < plastic.frame.rgb.data.size(); ++i) {
+    ASSERT_GE(plastic.layers.diffuse.data[i], 0.f);
+    reflected += plastic.frame.rgb.data[i] - plastic.layers.emission.data[i];
+    diffuse += plastic.layers.diffuse.data[i];
+  }
+  std::printf("plastic room: diffuse layer %.1f %% of the reflected light\n",
+              100 * diffuse / reflected);
+  EXPECT_GT(diffuse, 0.5 * reflected);
+  EXPECT_LT(diffuse, 0.99 * reflected);
+  // a smooth mirror has no diffuse lobe
+  const Split mirror = renderSplit(MaterialType::Conductor, 0.f);
+  for (float d : mirror.layers.diffuse.data) ASSERT_EQ(d, 0.f);
+  // the footprint albedo matches the albedo pass where the pixel sees one albedo (the albedo
+  // pass is the same over the centre's 3x3 neighbourhood): exactly at most pixels, off where a
+  // jittered sample catches something thinner than a pixel
+  int compared = 0, exact = 0;
+  double off = 0;
+  for (int y = 1; y < 47; ++y)
+    for (int x = 1; x < 63; ++x) {
+      bool one = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int c = 0; c < 3; ++c)
+            one = one && lambert.frame.albedo.at(x + dx, y + dy, c) == lambert.frame.albedo.at(x, y, c);
+      if (!one) continue;
+      ++compared;
+      double d = 0;
+      for (int c = 0; c < 3; ++c)
+        d += std::abs(lambert.layers.albedo.at(x, y, c) - lambert.frame.albedo.at(x, y, c));
+      exact += d < 1e-5;
+      off += d;
+    }
+  std::printf("footprint albedo = albedo pass at %d of %d one-albedo pixels, mean |diff| %.2e\n",
+              exact, compared, off / compared);
+  EXPECT_GT(exact, compared * 95 / 100);
+  EXPECT_LT(off / compared, 3e-3);
+  EXPECT_GT(compared, 64 * 48 / 2);
 }
 
 }  // namespace

@@ -1,0 +1,151 @@
+"""Noise, blotches and flicker of a rendered sequence against high-spp reference frames of the
+same poses (issue 14's acceptance figures; run inside Blender's Python, which has NumPy):
+
+    blender -b --factory-startup -P bench/sequence_quality.py -- --seq OURS_SEQ --ref REF_SEQ \\
+        [--ref2 REF2_SEQ] [--json out.json]
+
+OURS_SEQ is a folder written by `interiornet generate --hdr --passes rgb,depth,label,flow
+--format asl`; REF_SEQ one written for some of its poses (the same timestamps) at high spp and
+another seed (`--trajectory OURS_SEQ/state_groundtruth_estimate0/data.csv` rows). REF2_SEQ, a
+second reference of the same poses with a third seed, takes the references' own noise out: with
+A and B independent and unbiased, E|x - A|^2 = E|x - T|^2 + Var A and E|A - B|^2 = 2 Var A, so
+|x - T|^2 is estimated by |x - A|^2 - |A - B|^2 / 2 (summed over the region; rel_rmse_flat_true).
+
+Per frame that has a reference, over the flat diffuse regions of the label pass (walls 1, floors
+2, ceilings 22, NYU40), on linear RGB:
+  rel_rmse  sqrt(sum (x - r)^2 / sum r^2), every channel of every flat pixel
+  blotch    the largest 4-connected group of flat pixels whose 3x3-box-filtered luminance is
+            more than 10 % off the reference's (3x3 box too), in pixels
+Over consecutive frames k, k+1 of OURS_SEQ (the flicker of the issue): the flat pixels of k whose
+forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label neighbourhood on
+both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709).
+Specular light moves with the view, so a perfect render does not give 0 on a varnished floor.
+Prints one line "SEQ_JSON {...}".
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_images import load, load_labels  # noqa: E402
+
+FLAT = [1, 2, 22]
+REC709 = np.array([0.2126, 0.7152, 0.0722])
+
+
+def frames(seq):
+    return sorted(os.path.basename(p)[:-4] for p in glob.glob(os.path.join(seq, "cam0/data/*.exr")))
+
+
+def read_flo(path):
+    with open(path, "rb") as f:
+        tag = np.frombuffer(f.read(4), np.float32)[0]
+        assert abs(tag - 202021.25) < 1e-3, path
+        w, h = np.frombuffer(f.read(8), np.int32)
+        uv = np.frombuffer(f.read(), np.float32).reshape(h, w, 2).astype(np.float64)
+    valid = np.all(np.isfinite(uv) & (np.abs(uv) <= 1e9), axis=2)
+    return np.where(valid[:, :, None], uv, 0.0), valid
+
+
+def box3(a):
+    p = np.pad(a, 1, mode="edge")
+    h, w = a.shape
+    return sum(p[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)) / 9.0
+
+
+def uniform3(label):
+    p = np.pad(label, 1, mode="edge")
+    h, w = label.shape
+    return np.all(np.stack([p[dy:dy + h, dx:dx + w] == label for dy in range(3)
+                            for dx in range(3)]), axis=0)
+
+
+def largest_component(mask):
+    """Size of the largest 4-connected True region (iterative flood fill)."""
+    seen = np.zeros_like(mask, dtype=bool)
+    h, w = mask.shape
+    best = 0
+    for y0, x0 in zip(*np.nonzero(mask)):
+        if seen[y0, x0]:
+            continue
+        stack, n = [(y0, x0)], 0
+        seen[y0, x0] = True
+        while stack:
+            y, x = stack.pop()
+            n += 1
+            for yy, xx in ((y - 1, x), (y + 1, x), (y, x - 1), (y, x + 1)):
+                if 0 <= yy < h and 0 <= xx < w and mask[yy, xx] and not seen[yy, xx]:
+                    seen[yy, xx] = True
+                    stack.append((yy, xx))
+        best = max(best, n)
+    return best
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    ap = argparse.ArgumentParser(prog="sequence_quality.py")
+    ap.add_argument("--seq", required=True)
+    ap.add_argument("--ref")
+    ap.add_argument("--ref2")
+    ap.add_argument("--json")
+    a = ap.parse_args(argv)
+    names = frames(a.seq)
+    if not names:
+        sys.exit(f"sequence_quality.py: no cam0/data/*.exr in {a.seq} (generate --hdr)")
+    out = {"frames": {}, "flicker": {}}
+    img = {n: load(os.path.join(a.seq, "cam0/data", n + ".exr"))[:, :, :3] for n in names}
+    lab = {n: load_labels(os.path.join(a.seq, "label0/data", n + "_nyu.png")) for n in names}
+    for n in frames(a.ref) if a.ref else []:
+        if n not in img:
+            continue
+        x, r = img[n], load(os.path.join(a.ref, "cam0/data", n + ".exr"))[:, :, :3]
+        flat = np.isin(lab[n], FLAT)
+        d = (x - r)[flat]
+        lx, lr = box3(x @ REC709), box3(r @ REC709)
+        bad = flat & (np.abs(lx - lr) > 0.1 * np.maximum(lr, 1e-6))
+        out["frames"][n] = {
+            "rel_rmse_flat": float(np.sqrt(np.sum(d ** 2) / np.sum(r[flat] ** 2))),
+            "rel_rmse_all": float(np.sqrt(np.sum((x - r) ** 2) / np.sum(r ** 2))),
+            "largest_blotch_px": int(largest_component(bad)),
+            "flat_pixels": int(flat.sum())}
+        r2_path = os.path.join(a.ref2, "cam0/data", n + ".exr") if a.ref2 else ""
+        if r2_path and os.path.exists(r2_path):
+            r2 = load(r2_path)[:, :, :3]
+            ref_noise = np.sum((r - r2)[flat] ** 2) / 2
+            out["frames"][n]["ref_rel_rmse_flat"] = float(np.sqrt(ref_noise / np.sum(r[flat] ** 2)))
+            true = max(np.sum(d ** 2) - ref_noise, 0.0)
+            out["frames"][n]["rel_rmse_flat_true"] = float(np.sqrt(true / np.sum(r[flat] ** 2)))
+    for k in range(len(names) - 1):
+        n0, n1 = names[k], names[k + 1]
+        flo = os.path.join(a.seq, "flow0/data", n0 + ".flo")
+        if not os.path.exists(flo):
+            continue
+        uv, valid = read_flo(flo)
+        h, w = valid.shape
+        ys, xs = np.mgrid[0:h, 0:w]
+        tx = np.floor(xs + 0.5 + uv[:, :, 0]).astype(int)
+        ty = np.floor(ys + 0.5 + uv[:, :, 1]).astype(int)
+        inside = valid & (tx >= 0) & (tx < w) & (ty >= 0) & (ty < h)
+        txc, tyc = np.clip(tx, 0, w - 1), np.clip(ty, 0, h - 1)
+        l0, l1 = lab[n0], lab[n1]
+        ok = (inside & np.isin(l0, FLAT) & uniform3(l0) & (l1[tyc, txc] == l0)
+              & uniform3(l1)[tyc, txc])
+        L0, L1 = img[n0] @ REC709, img[n1] @ REC709
+        diff = np.abs(L1[tyc, txc] - L0)[ok]
+        out["flicker"][n0] = float(diff.mean() / max(L0[ok].mean(), 1e-12)) if ok.any() else None
+    fl = [v for v in out["flicker"].values() if v is not None]
+    out["mean_flicker"] = float(np.mean(fl)) if fl else None
+    for key in ("rel_rmse_flat", "rel_rmse_flat_true"):
+        rr = [f[key] for f in out["frames"].values() if key in f]
+        out["mean_" + key] = float(np.mean(rr)) if rr else None
+    print("SEQ_JSON " + json.dumps(out))
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(out, f, indent=1)
+
+
+main()

@@ -1,0 +1,200 @@
+#include "sensors/temporal_reuse.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+namespace inet {
+namespace {
+
+/// 1 where a pixel's samples, spread over its footprint, all land on one continuous surface: its
+/// 3x3 neighbourhood has depth, one NYU40 class, depths within 5 % of the centre's and, in a
+/// scene with moving objects, one instance. Edge pixels mix two surfaces in proportions that
+/// change from frame to frame (the wall behind a mirror's rim would leak into the mirror), so
+/// they neither give nor take reused light. The class, not the instance, joins the pieces of one
+/// surface: a wall is many instances, some coplanar and overlapping (their boundary pixels
+/// flicker between ids), and the reuse of those pixels is exact all the same.
+ImageU8 interiorPixels(const ImageU8& label, const ImageU16* instance, const ImageF& depth) {
+  const int W = label.width, H = label.height;
+  ImageU8 out(W, H, 1, 0);
+  for (int y = 1; y + 1 < H; ++y)
+    for (int x = 1; x + 1 < W; ++x) {
+      const float z = depth.at(x, y);
+      if (!(z > 0.f)) continue;
+      bool same = true;
+      for (int dy = -1; dy <= 1 && same; ++dy)
+        for (int dx = -1; dx <= 1 && same; ++dx)
+          same = label.at(x + dx, y + dy) == label.at(x, y) &&
+                 std::abs(depth.at(x + dx, y + dy) - z) <= 0.05f * z &&
+                 (!instance || instance->at(x + dx, y + dy) == instance->at(x, y));
+      out.at(x, y) = same ? 1 : 0;
+    }
+  return out;
+}
+
+}  // namespace
+
+void TemporalReuseOptions::validate(const std::string& where) const {
+  if (window < 1 || window > 64)
+    throw InputError(where, "--temporal", fmt::format("window {} is outside 1..64 frames", window));
+  if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
+    throw InputError(where, "temporal.albedo_epsilon", "must be in (0, 1]");
+  flow.validate(where);
+}
+
+std::string TemporalReuseOptions::describe() const {
+  return fmt::format("window={} albedo_epsilon={} occlusion_rel_tol={} occlusion_abs_tol_m={}",
+                     window, albedo_epsilon, flow.occlusion_rel_tol, flow.occlusion_abs_tol_m);
+}
+
+TemporalReuse::TemporalReuse(const Scene& scene, const LensModel& lens,
+                             const TemporalReuseOptions& options)
+    : scene_(scene), lens_(lens), options_(options) {
+  options_.validate("temporal reuse");
+  options_.flow.depth_kind = groundTruthDepthKind(lens.type);
+  for (const Object& o : scene.objects) has_motion_ = has_motion_ || o.moving();
+}
+
+void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera,
+                        double scene_time_s, ImageU8* used) {
+  const int W = lens_.K.width, H = lens_.K.height;
+  const ImageF& depth =
+      options_.flow.depth_kind == DepthKind::ZDepth ? frame.depth_z : frame.depth_ray;
+  INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.albedo.width == W &&
+                 depth.width == W && frame.label.width == W && frame.instance.width == W &&
+                 layers.diffuse.width == W &&
+                 layers.diffuse_variance.width == W && layers.rest_variance.width == W);
+  // (a frame rendered with layers, at the lens' size)
+  const float eps = options_.albedo_epsilon;
+  const size_t n_px = static_cast<size_t>(W) * H;
+  // this frame's demodulated diffuse light: what later frames will read
+  // instances matter to the visibility test and the taps only where objects move (the motion
+  // is per instance); otherwise the class and the depths decide (see interiorPixels)
+  const ImageU16 no_instances;
+  const ImageU16& instance = has_motion_ ? frame.instance : no_instances;
+  Past self{T_world_camera,
+            scene_time_s,
+            depth,
+            instance,
+            frame.label,
+            ImageF(W, H, 3),
+            ImageF(W, H, 3),
+            interiorPixels(frame.label, has_motion_ ? &frame.instance : nullptr, depth)};
+  for (size_t i = 0; i < n_px * 3; ++i) {
+    const float a = std::max(layers.albedo.data[i], eps);
+    self.irradiance.data[i] = layers.diffuse.data[i] / a;
+    self.variance.data[i] = layers.diffuse_variance.data[i] / (a * a);
+  }
+  // Where each interior pixel lands in each remembered frame: the (up to) 4 bilinear taps around
+  // the landing point that are interior pixels of the pixel's own class (and instance, where
+  // objects move; the flow's visibility rule has checked their depths), with weights summing to
+  // 1; none where the point is not seen there.
+  struct Taps {
+    int32_t index[4];
+    float weight[4];
+    int count = 0;
+  };
+  std::vector<std::vector<Taps>> source(past_.size());
+  const FlowFrameView now{depth, instance, T_world_camera};
+  const bool wrap_u = lens_.type == LensType::Panorama;
+  for (size_t j = 0; j < past_.size(); ++j) {
+    const Past& p = past_[j];
+    const ObjectMotion motion = objectMotionBetween(scene_, scene_time_s, p.scene_time_s);
+    const FlowField f = forwardFlow(now, FlowFrameView{p.depth, p.instance, p.T_world_camera},
+                                    lens_, motion, options_.flow);
+    std::vector<Taps>& src = source[j];
+    src.assign(n_px, Taps{});
+    tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+      for (int y = rows.begin(); y < rows.end(); ++y)
+        for (int x = 0; x < W; ++x) {
+          if (!f.valid.at(x, y) || f.occluded.at(x, y) || !self.interior.at(x, y)) continue;
+          // pixel centres at +0.5: the taps are the centres around the landing point
+          const double u = x + f.flow.at(x, y, 0), v = y + f.flow.at(x, y, 1);
+          const double u0 = std::floor(u), v0 = std::floor(v);
+          const auto fu = static_cast<float>(u - u0), fv = static_cast<float>(v - v0);
+          const uint16_t inst = has_motion_ ? frame.instance.at(x, y) : 0;
+          const uint8_t cls = frame.label.at(x, y);
+          Taps& t = src[static_cast<size_t>(y) * W + x];
+          float total = 0.f;
+          for (int k = 0; k < 4; ++k) {
+            int tu = static_cast<int>(u0) + (k & 1);
+            const int tv = static_cast<int>(v0) + (k >> 1);
+            const float w = ((k & 1) ? fu : 1.f - fu) * ((k >> 1) ? fv : 1.f - fv);
+            if (wrap_u) tu = ((tu % W) + W) % W;
+            if (w <= 0.f || tu < 0 || tu >= W || tv < 0 || tv >= H) continue;
+            if (p.label.at(tu, tv) != cls || !p.interior.at(tu, tv) ||
+                (has_motion_ && p.instance.at(tu, tv) != inst))
+              continue;
+            t.index[t.count] = tv * W + tu;
+            t.weight[t.count++] = w;
+            total += w;
+          }
+          for (int k = 0; k < t.count; ++k) t.weight[k] /= total;
+        }
+    });
+  }
+  if (used) *used = ImageU8(W, H, 1, 1);
+  ImageF& rgb = frame.rgb;
+  tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        // Each frame's estimate is weighted by the inverse of its variance factor: 1 for this
+        // frame's own pixel, sum w^2 (< 1) for an interpolation of a past frame's taps, taken as
+        // having the same per-pixel noise. The weights depend only on geometry, never on the
+        // samples, so the mean stays unbiased.
+        double sum[3], var[3], total = 1.0;
+        for (int c = 0; c < 3; ++c) {
+          sum[c] = self.irradiance.data[i * 3 + c];
+          var[c] = self.variance.data[i * 3 + c];
+        }
+        int n = 1;
+        // newest first: a fixed order, so the sums do not depend on threads
+        for (size_t j = past_.size(); j-- > 0;) {
+          const Taps& t = source[j][i];
+          if (t.count == 0) continue;
+          double s2 = 0.0;
+          for (int k = 0; k < t.count; ++k) s2 += static_cast<double>(t.weight[k]) * t.weight[k];
+          const double frame_w = 1.0 / s2;
+          for (int c = 0; c < 3; ++c) {
+            double value = 0.0, value_var = 0.0;
+            for (int k = 0; k < t.count; ++k) {
+              const size_t at = static_cast<size_t>(t.index[k]) * 3 + c;
+              value += t.weight[k] * past_[j].irradiance.data[at];
+              value_var += static_cast<double>(t.weight[k]) * t.weight[k] * past_[j].variance.data[at];
+            }
+            sum[c] += frame_w * value;
+            var[c] += frame_w * frame_w * value_var;
+          }
+          total += frame_w;
+          ++n;
+        }
+        if (used) used->at(x, y) = static_cast<uint8_t>(n);
+        if (n == 1) continue;  // seen for the first time: the frame's own samples, untouched
+        for (int c = 0; c < 3; ++c) {
+          const size_t k = i * 3 + c;
+          const float a = std::max(layers.albedo.data[k], eps);
+          const auto reused = static_cast<float>(sum[c] / total * a);
+          const auto reused_var = static_cast<float>(var[c] / (total * total) * a * a);
+          rgb.data[k] += reused - layers.diffuse.data[k];
+          layers.diffuse.data[k] = reused;
+          layers.diffuse_variance.data[k] = reused_var;
+          // the rest's own variance plus the reused mean's (their covariance left out: the
+          // reused part is mostly other frames' independent samples)
+          layers.variance.data[k] = reused_var + layers.rest_variance.data[k];
+        }
+      }
+  });
+  past_.push_back(std::move(self));
+  while (static_cast<int>(past_.size()) > options_.window - 1) past_.pop_front();
+}
+
+}  // namespace inet
