@@ -65,8 +65,9 @@ struct GenerateArgs {
   std::string config = "original";
   std::string out = "out";
   bool progress = true;
-  bool denoise = false;
-  int temporal = 1;  ///< temporal reuse window in frames (1 = off)
+  bool denoise = true;
+  int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
+  bool temporal_set = false;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
   LensArgs lens;
@@ -213,7 +214,7 @@ void validateArgs(const GenerateArgs& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
-  if (a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
+  if (a.temporal_set && a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
     throw InputError("", "--temporal",
                      "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
                      "0): a blurred pixel has no single surface point to carry to the next frame");
@@ -296,6 +297,13 @@ CameraExposure exposureAt(const CameraPath& cam, size_t k, const Shutter& shutte
   return ex;
 }
 
+/// The temporal reuse window in frames: --temporal, else 8, or 1 (off) with motion blur or a
+/// rolling shutter, which temporal reuse cannot follow.
+int temporalWindow(const GenerateArgs& a) {
+  if (a.temporal_set) return a.temporal;
+  return a.exposure_ms > 0 || a.readout_ms > 0 ? 1 : a.temporal;
+}
+
 nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const RenderOptions& opt,
                           const CameraPath& cam) {
   // Only what determines the output bytes: no thread count, no output path, no clock time.
@@ -313,9 +321,9 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                                  "clamp -> sRGB 8-bit PNG"
                                : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
   m["render"]["denoise"] = opt.denoise ? opt.denoise_options.describe() : "off";
-  if (a.temporal > 1) {
+  if (temporalWindow(a) > 1) {
     TemporalReuseOptions t;
-    t.window = a.temporal;
+    t.window = temporalWindow(a);
     m["render"]["temporal_reuse"] = t.describe() + " (sensors/temporal_reuse.h)";
   }
   m["seed"] = opt.seed;
@@ -571,10 +579,11 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
   // Temporal reuse (sensors/temporal_reuse.h), one per camera: frame k's colour depends on
   // frames k - window + 1 .. k, so after a gap (frames a killed run finished) the frames before
   // the next one are rendered again first, and a resumed run writes the same bytes.
-  const bool temporal = a.temporal > 1 && has(passes, Pass::Rgb);
+  const int window = temporalWindow(a);
+  const bool temporal = window > 1 && has(passes, Pass::Rgb);
   std::optional<TemporalReuse> reuse, reuse1;
   TemporalReuseOptions reuse_opt;
-  reuse_opt.window = a.temporal;
+  reuse_opt.window = window;
   if (temporal) {
     reuse.emplace(scene, lens, reuse_opt);
     if (a.stereo > 0) reuse1.emplace(scene, lens, reuse_opt);
@@ -607,7 +616,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     if (reuse1) reuse1->clear();
     RenderOptions colour = opt;
     colour.passes = static_cast<PassMask>(Pass::Rgb);
-    for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(a.temporal - 1)); j < k; ++j) {
+    for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(window - 1)); j < k; ++j) {
       const auto idx = static_cast<uint32_t>(j);
       CameraExposure ex = exposureOf(j, Pose{});
       renderer.render(lens, ex, colour, idx, warm, &layers);
@@ -768,15 +777,18 @@ void registerGenerate(CLI::App& app) {
   cmd->add_flag("--hdr", a->hdr,
                 "also write the linear RGB radiance (before exposure, noise, tone curve, sRGB) as "
                 "float32 EXR, channels R G B: cam0/data/<t>.exr next to the PNG");
-  cmd->add_flag("--denoise", a->denoise,
+  cmd->add_flag("--denoise,!--no-denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
-                "never filtered); off by default");
+                "never filtered; docs/denoise.md). On by default: it trades a little bias for "
+                "much less noise; --no-denoise keeps the unbiased path-traced colour");
   cmd->add_option("--temporal", a->temporal,
-                  "temporal reuse: average each surface point's diffuse light over the last N "
-                  "frames that saw it, reprojected exactly through the ground truth (depth, "
-                  "instances, object motion); speculars, lights in view and newly seen points "
-                  "keep their own frame's samples; before --denoise. Needs a global shutter "
-                  "without blur (docs/denoise.md, sensors/temporal_reuse.h); default 1 = off");
+                  "temporal reuse window N: average each surface point's diffuse light over the "
+                  "last N frames that saw it, reprojected exactly through the ground truth (depth, "
+                  "classes, object motion); speculars, lights in view, edges and newly seen points "
+                  "keep their own frame's samples; before the denoiser (docs/denoise.md). Default "
+                  "8, or 1 (off) with --exposure-ms or --readout-ms, which it cannot follow; "
+                  "1 = off")
+      ->each([a](const std::string&) { a->temporal_set = true; });
   cmd->add_flag("--allow-dark", a->allow_dark,
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "

@@ -371,7 +371,8 @@ TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
 
 TEST(Generate, HdrExrIsTheLinearRadianceBehindThePng) {
   TempDir dir("gen_hdr");
-  const std::string common = kSmall + "--hdr --frames 2 --spp 2 --tone none ";
+  // the raw path-traced colour (no reuse, no denoiser): its brightest pixels exceed 1
+  const std::string common = kSmall + "--hdr --frames 2 --spp 2 --tone none --no-denoise --temporal 1 ";
   RunResult a = runInterinet(common + "--exposure-ev 0 --out " + (dir / "a").string());
   RunResult b = runInterinet(common + "--exposure-ev 2 --out " + (dir / "b").string());
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -398,7 +399,7 @@ TEST(Generate, HdrExrIsTheLinearRadianceBehindThePng) {
     EXPECT_NE(readTextFile(sb / (std::string(t) + ".png")),
               readTextFile(s / "cam0/data" / (std::string(t) + ".png")));
   }
-  EXPECT_GT(bright, 0u) << "lamps and sun exceed 1: the EXR must not be clipped";
+  EXPECT_GT(bright, 0u) << "radiance above 1 is kept: the EXR must not be clipped";
   auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
   EXPECT_TRUE(meta["encodings"].contains("rgb_exr"));
 }
@@ -476,7 +477,7 @@ TEST(Generate, TemporalReuseResumesToTheSameBytes) {
     }
   }
   // and reuse changed the colour
-  RunResult plain = runInterinet(kSmall + "--hdr --frames 6 --spp 2 --stereo 0.1 " +
+  RunResult plain = runInterinet(kSmall + "--hdr --frames 6 --spp 2 --stereo 0.1 --temporal 1 " +
                                  "--passes rgb,depth --format asl --imu 0 --out " +
                                  (dir / "plain").string());
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
@@ -486,7 +487,7 @@ TEST(Generate, TemporalReuseResumesToTheSameBytes) {
   EXPECT_EQ(readTree(dir / "plain").at(first), full.at(first)) << "frame 0 has no past";
 }
 
-TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlur) {
+TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
   TempDir dir("gen_temporal_bad");
   const std::string out = " --frames 2 --spp 1 --out " + (dir / "out").string();
   RunResult zero = runInterinet(kSmall + "--temporal 0" + out);
@@ -496,6 +497,12 @@ TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlur) {
   EXPECT_NE(blur.exit_code, 0);
   EXPECT_NE(blur.err.find("global shutter"), std::string::npos) << blur.err;
   EXPECT_FALSE(fs::exists(dir / "out")) << "nothing written";
+  // by default, motion blur simply turns the reuse off (meta.json says so)
+  RunResult by_default = runInterinet(kSmall + "--exposure-ms 5" + out);
+  ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
+  const std::string meta = readTextFile(seqDir(dir / "out") / "meta.json");
+  EXPECT_EQ(meta.find("temporal_reuse"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"denoise\": \"iterations="), std::string::npos) << meta;
 }
 
 TEST(Generate, CtrlCStopsCleanlyAndResumes) {
