@@ -609,6 +609,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     renderer.render(lens, ex, opt, idx, f, &layers);
     r->add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
     if (opt.denoise) denoiseRgb(f, layers, opt.denoise_options);
+    if (has(opt.passes, Pass::Shading)) shadingFromRgb(f);  // of the filtered colour
   };
   auto warmUp = [&](size_t k) {  // the frames before k that k's colour reuses
     if (!temporal || reuse_next == k) return;

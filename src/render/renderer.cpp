@@ -71,16 +71,20 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   }
   if (has(options.passes, Pass::Rgb)) frame.passes |= static_cast<PassMask>(Pass::Rgb);
   if (shading) {
-    // illumination = rgb / albedo (albedo floored at 1e-3; no surface: 0)
-    frame.shading = ImageF(K.width, K.height, 3);
-    for (size_t i = 0; i < frame.shading.data.size(); ++i) {
-      float a = frame.albedo.data[i];
-      frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
-    }
-    frame.passes |= static_cast<PassMask>(Pass::Shading);
+    shadingFromRgb(frame);
   } else {
     frame.shading = {};
   }
+}
+
+void shadingFromRgb(Frame& frame) {
+  // illumination = rgb / albedo (albedo floored at 1e-3; no surface: 0)
+  frame.shading = ImageF(frame.rgb.width, frame.rgb.height, 3);
+  for (size_t i = 0; i < frame.shading.data.size(); ++i) {
+    float a = frame.albedo.data[i];
+    frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
+  }
+  frame.passes |= static_cast<PassMask>(Pass::Shading);
 }
 
 void Renderer::renderGroundTruth(const LensModel& lens, const Pose& T_world_camera, PassMask passes,

@@ -13,6 +13,11 @@ namespace inet {
 
 class EmbreeScene;
 
+/// The shading pass from the frame's rgb and albedo (rgb / albedo, albedo floored at 1e-3; 0
+/// where there is no surface), flagged in frame.passes. Renderer::render calls it; a caller that
+/// filters the colour afterwards (temporal reuse, the denoiser) calls it again.
+void shadingFromRgb(Frame& frame);
+
 class Renderer {
  public:
   /// Builds the acceleration structure; throws InputError for an unknown integrator name.
