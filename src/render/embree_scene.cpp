@@ -358,7 +358,31 @@ void EmbreeScene::buildLights(const Scene& scene) {
       triangles.push_back(e);
     }
   }
-  lights_ = std::make_unique<SceneLights>(scene, std::move(triangles));
+  // window panes: skies are also sampled through them (lights.h, sky portals), at their rest
+  // placement (a moving pane would only make the portal less apt, never the image biased)
+  std::vector<PortalTriangle> portals;
+  for (const Object& o : scene.objects) {
+    const Mesh& mesh = scene.meshes[o.mesh];
+    if (scene.materials[o.material].type != MaterialType::ThinDielectric || mesh.isSphere())
+      continue;
+    for (const Tri& t : mesh.triangles) {
+      Vec3f p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous())
+                   .head<3>()
+                   .cast<float>();
+      PortalTriangle q;
+      q.p0 = p[0];
+      q.e1 = p[1] - p[0];
+      q.e2 = p[2] - p[0];
+      const Vec3f c = q.e1.cross(q.e2);
+      q.area = 0.5f * c.norm();
+      if (!(q.area > 0.f)) continue;
+      q.normal = c.normalized();
+      portals.push_back(q);
+    }
+  }
+  lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), std::move(portals));
 }
 
 }  // namespace inet

@@ -11,6 +11,8 @@ namespace inet {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
+/// Share of a sky's samples that go through the portals where some portal faces the receiver.
+constexpr float kPortalShare = 0.5f;
 
 
 float smoothstep(float a, float b, float x) {
@@ -21,8 +23,11 @@ float smoothstep(float a, float b, float x) {
 
 }  // namespace
 
-SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles)
+SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles,
+                         std::vector<PortalTriangle> portals)
     : triangles_(std::move(triangles)) {
+  for (PortalTriangle& t : portals)
+    if (t.area > 0.f) portals_.push_back(t);
   triangle_in_group_.resize(triangles_.size());
   group_of_.assign(triangles_.size(), -1);
   for (size_t i = 0; i < triangles_.size();) {
@@ -173,6 +178,52 @@ bool SceneLights::sample(const PickPoint& at, float u_pick, const Eigen::Vector2
 
 bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                                  LightSample& out) const {
+  const float portal_w =
+      a.type == LightType::Sky && !portals_.empty() ? portalWeight(p) : 0.f;
+  if (portal_w > 0.f) {
+    // the mixture of the sky's own table and the portals (see lights.h)
+    float ux = u.x();
+    Vec3f d;
+    if (ux < kPortalShare) {
+      // a portal triangle by its weight at p, ux rescaled within its share for the point
+      const float target = ux / kPortalShare * portal_w;
+      size_t i = 0;
+      float acc = 0.f, w = 0.f;
+      for (; i < portals_.size(); ++i) {
+        acc += (w = portalPick(i, p));
+        if (target < acc) break;
+      }
+      if (i == portals_.size()) i = portals_.size() - 1;
+      const float v = w > 0.f ? std::clamp((target - (acc - w)) / w, 0.f, 0.99999994f) : 0.5f;
+      const PortalTriangle& t = portals_[i];
+      const float su = std::sqrt(v);
+      const Vec3f q = t.p0 + t.e1 * (1.f - su) + t.e2 * (su * u.y());
+      const Vec3f wq = q - p;
+      const float len = wq.norm();
+      if (!(len > 0.f)) return false;
+      d = wq / len;
+    } else {
+      const Eigen::Vector2f uu(
+          std::min((ux - kPortalShare) / (1.f - kPortalShare), 0.99999994f), u.y());
+      Vec3f radiance;
+      float own_pdf;
+      if (a.envmap >= 0) {
+        if (!envmaps_[a.envmap].sample(uu, d, radiance, own_pdf)) return false;
+      } else if (a.sky >= 0) {
+        if (!skies_[a.sky].sample(uu, d, radiance, own_pdf)) return false;
+      } else {
+        const float z = 1.f - 2.f * uu.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
+        const float phi = 2.f * kPi * uu.y();
+        d = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+      }
+    }
+    out.wi = d;
+    out.radiance = skyRadiance(a, d);
+    out.pdf = (1.f - kPortalShare) * ownSkyPdf(a, d) + kPortalShare * portalPdf(p, d, portal_w);
+    out.dist = std::numeric_limits<float>::infinity();
+    out.delta = false;
+    return out.pdf > 0.f && out.radiance.maxCoeff() > 0.f;
+  }
   if (a.envmap >= 0 || a.sky >= 0) {
     const bool ok = a.envmap >= 0 ? envmaps_[a.envmap].sample(u, out.wi, out.radiance, out.pdf)
                                   : skies_[a.sky].sample(u, out.wi, out.radiance, out.pdf);
@@ -239,6 +290,11 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, const PickPoint* at, floa
   auto pmf = [&](size_t k) { return total > 0.f ? env_importance_[k] / total : 0.f; };
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
+    if (a.type == LightType::Sky && !portals_.empty()) {
+      L += skyRadiance(a, d);
+      if (total > 0.f) pdf += pmf(k) * mixturePdf(a, at->p, d);
+      continue;
+    }
     if (a.envmap >= 0) {
       const EnvMapSkyLight& map = envmaps_[a.envmap];
       L += map.radiance(d);
@@ -261,6 +317,70 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, const PickPoint* at, floa
     pdf += pmf(k) / (2.f * kPi * a.one_minus_cos_max);
   }
   return L;
+}
+
+Vec3f SceneLights::skyRadiance(const Analytic& a, const Vec3f& d) const {
+  if (a.envmap >= 0) return envmaps_[a.envmap].radiance(d);
+  if (a.sky >= 0) return skies_[a.sky].radiance(d);
+  return a.rgb;
+}
+
+float SceneLights::ownSkyPdf(const Analytic& a, const Vec3f& d) const {
+  if (a.envmap >= 0) return envmaps_[a.envmap].pdf(d);
+  if (a.sky >= 0) return skies_[a.sky].pdf(d);
+  return 1.f / (4.f * kPi);
+}
+
+float SceneLights::portalPick(size_t i, const Vec3f& p) const {
+  // the solid angle the triangle roughly subtends at p (its area seen from its centroid),
+  // bounded where p comes within the triangle's own size
+  const PortalTriangle& t = portals_[i];
+  const Vec3f w = t.p0 + (t.e1 + t.e2) * (1.f / 3.f) - p;
+  const float d2 = w.squaredNorm();
+  if (!(d2 > 0.f)) return 0.f;
+  const float cos = std::abs(t.normal.dot(w)) / std::sqrt(d2);
+  return t.area * cos / std::max(d2, t.area);
+}
+
+float SceneLights::portalWeight(const Vec3f& p) const {
+  float w = 0.f;
+  for (size_t i = 0; i < portals_.size(); ++i) w += portalPick(i, p);
+  return w;
+}
+
+float SceneLights::portalPdf(const Vec3f& p, const Vec3f& d, float w) const {
+  // every portal triangle the ray p + t d (t > 0) crosses (Moller-Trumbore): the pdf of having
+  // chosen that point on it, as a solid angle density
+  float pdf = 0.f;
+  for (size_t i = 0; i < portals_.size(); ++i) {
+    const PortalTriangle& t = portals_[i];
+    const Vec3f h = d.cross(t.e2);
+    const float det = t.e1.dot(h);
+    if (std::abs(det) < 1e-12f) continue;
+    const float inv = 1.f / det;
+    const Vec3f s = p - t.p0;
+    const float b1 = s.dot(h) * inv;
+    if (b1 < 0.f || b1 > 1.f) continue;
+    const Vec3f q = s.cross(t.e1);
+    const float b2 = d.dot(q) * inv;
+    if (b2 < 0.f || b1 + b2 > 1.f) continue;
+    const float dist = t.e2.dot(q) * inv;
+    if (!(dist > 0.f)) continue;
+    const float cos = std::abs(t.normal.dot(d));
+    if (!(cos > 0.f)) continue;
+    pdf += portalPick(i, p) / w * dist * dist / (t.area * cos);
+  }
+  return pdf;
+}
+
+float SceneLights::mixturePdf(const Analytic& a, const Vec3f& p, const Vec3f& d) const {
+  const float w = portals_.empty() ? 0.f : portalWeight(p);
+  if (!(w > 0.f)) return ownSkyPdf(a, d);
+  return (1.f - kPortalShare) * ownSkyPdf(a, d) + kPortalShare * portalPdf(p, d, w);
+}
+
+float SceneLights::skyPdf(size_t analytic_index, const Vec3f& p, const Vec3f& d) const {
+  return mixturePdf(analytic_[analytic_index], p, d);
 }
 
 }  // namespace inet

@@ -13,6 +13,15 @@
 // A uniform sky is sampled uniformly on the sphere; a Preetham sky from a table of its luminance
 // over the upper hemisphere, an environment map from a table of its texels' luminance over the
 // sphere (sky.h), each with the same pdf for escaped rays (environmentRadiance).
+// Sky portals: indoors, nearly every direction those tables choose ends on a wall; the sky is
+// seen only through the windows. When the scene has window panes (thin dielectrics), half of a
+// sky's samples go through them instead: a pane triangle picked by the solid angle it roughly
+// subtends at the receiver (area x |cos| / d^2), a uniform point on it, the direction to it. The
+// sky's pdf is the mixture of both strategies, p = (1 - s) p_sky(d) + s p_portal(d | receiver),
+// with p_portal summed over the pane triangles the ray crosses (dist^2 / (area |cos|) each, times
+// its pick probability), in `sample` and for escaped rays alike, so the estimate stays unbiased
+// whatever the panes (s = 1/2 where some pane faces the receiver, else 0). Suns are not sampled
+// through portals: their cone is already tiny.
 //
 // Conventions: `sample` returns the radiance arriving at p from the chosen point and the pdf of
 // choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
@@ -34,6 +43,13 @@ struct EmissiveTriangle {
   int group = 0;  ///< the emissive object it belongs to (consecutive triangles share it)
 };
 
+/// A triangle of a window pane, through which skies are also sampled (see above).
+struct PortalTriangle {
+  Vec3f p0, e1, e2;  ///< vertex and edges
+  Vec3f normal;      ///< unit geometric normal (either side)
+  float area = 0.f;
+};
+
 struct LightSample {
   Vec3f wi;          ///< unit direction from p toward the light
   float dist = 0.f;  ///< distance to the sampled point (infinity for the sun)
@@ -44,8 +60,10 @@ struct LightSample {
 
 class SceneLights {
  public:
-  /// Collects the lights that are on.
-  SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles);
+  /// Collects the lights that are on; `portals` are the window panes skies are also sampled
+  /// through (none: skies use their own tables alone).
+  SceneLights(const Scene& scene, std::vector<EmissiveTriangle> triangles,
+              std::vector<PortalTriangle> portals = {});
 
   bool empty() const { return groups_.empty() && analytic_.empty(); }
   size_t triangleCount() const { return triangles_.size(); }
@@ -76,6 +94,10 @@ class SceneLights {
   /// then the analytic lights in scene order, those that are on), for tests.
   float pickProbability(const Vec3f& p, size_t k) const;
   size_t pickCount() const { return groups_.size() + analytic_.size(); }
+  size_t portalCount() const { return portals_.size(); }
+  /// The solid-angle pdf with which a sky's sample for a receiver at p chooses direction d (the
+  /// mixture above, without the light pick), for tests.
+  float skyPdf(size_t analytic_index, const Vec3f& p, const Vec3f& d) const;
 
  private:
   struct Analytic {
@@ -100,6 +122,16 @@ class SceneLights {
   };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                       LightSample& out) const;
+  /// A sky's own radiance and solid-angle pdf (its table, or uniform) along d.
+  Vec3f skyRadiance(const Analytic& a, const Vec3f& d) const;
+  float ownSkyPdf(const Analytic& a, const Vec3f& d) const;
+  /// Sum of the portals' pick weights at p (0: no portal faces p).
+  float portalWeight(const Vec3f& p) const;
+  float portalPick(size_t i, const Vec3f& p) const;
+  /// p_portal(d | p) given the total weight w at p (> 0).
+  float portalPdf(const Vec3f& p, const Vec3f& d, float w) const;
+  /// The mixture pdf of a sky along d for a receiver at p.
+  float mixturePdf(const Analytic& a, const Vec3f& p, const Vec3f& d) const;
   /// Unoccluded-irradiance estimate of pick entry k (groups, then analytic) at p.
   float importance(size_t k, const Vec3f& p) const;
 
@@ -112,6 +144,7 @@ class SceneLights {
   std::vector<EnvMapSkyLight> envmaps_;
   std::vector<size_t> environment_;  // indices into analytic_ of suns and skies (escaped rays)
   std::vector<float> env_importance_;  // per analytic_: the irradiance of a sun or sky (else 0)
+  std::vector<PortalTriangle> portals_;
 };
 
 }  // namespace inet
