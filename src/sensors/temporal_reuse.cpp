@@ -70,12 +70,11 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
       options_.flow.depth_kind == DepthKind::ZDepth ? frame.depth_z : frame.depth_ray;
   INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.albedo.width == W &&
                  depth.width == W && frame.label.width == W && frame.instance.width == W &&
-                 layers.diffuse.width == W &&
-                 layers.diffuse_variance.width == W && layers.rest_variance.width == W);
+                 layers.diffuse.width == W && layers.diffuse_variance.width == W &&
+                 layers.rest_variance.width == W);
   // (a frame rendered with layers, at the lens' size)
   const float eps = options_.albedo_epsilon;
   const size_t n_px = static_cast<size_t>(W) * H;
-  // this frame's demodulated diffuse light: what later frames will read
   // instances matter to the visibility test and the taps only where objects move (the motion
   // is per instance); otherwise the class and the depths decide (see interiorPixels)
   const ImageU16 no_instances;
@@ -88,6 +87,7 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
             ImageF(W, H, 3),
             ImageF(W, H, 3),
             interiorPixels(frame.label, has_motion_ ? &frame.instance : nullptr, depth)};
+  // this frame's demodulated diffuse light: what later frames will read
   for (size_t i = 0; i < n_px * 3; ++i) {
     const float a = std::max(layers.albedo.data[i], eps);
     self.irradiance.data[i] = layers.diffuse.data[i] / a;
