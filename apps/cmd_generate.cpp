@@ -599,15 +599,20 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     for (auto& [dt, pose] : ex.knots) pose = pose * T_rig;
     return ex;
   };
+  // one camera's frame k rendered with `o` into f and passed through its reuse window r
+  auto renderReused = [&](size_t k, const Pose& T_rig, uint32_t idx, const RenderOptions& o,
+                          TemporalReuse& r, Frame& f) {
+    const CameraExposure ex = exposureOf(k, T_rig);
+    renderer.render(lens, ex, o, idx, f, &layers);
+    r.add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+  };
   // renders one camera's frame k into f (colour filtered as asked: reuse, then the denoiser)
   auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f) {
-    const CameraExposure ex = exposureOf(k, T_rig);
     if (!r) {
-      renderer.render(lens, ex, opt, idx, f);
+      renderer.render(lens, exposureOf(k, T_rig), opt, idx, f);
       return;
     }
-    renderer.render(lens, ex, opt, idx, f, &layers);
-    r->add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+    renderReused(k, T_rig, idx, opt, *r, f);
     if (opt.denoise) denoiseRgb(f, layers, opt.denoise_options);
     if (has(opt.passes, Pass::Shading)) shadingFromRgb(f);  // of the filtered colour
   };
@@ -619,16 +624,8 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     colour.passes = static_cast<PassMask>(Pass::Rgb);
     for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(window - 1)); j < k; ++j) {
       const auto idx = static_cast<uint32_t>(j);
-      CameraExposure ex = exposureOf(j, Pose{});
-      renderer.render(lens, ex, colour, idx, warm, &layers);
-      reuse->add(warm, layers, ex.T_world_camera_open,
-                 static_cast<double>(ex.scene_time_open_ns) * 1e-9);
-      if (reuse1) {
-        ex = exposureOf(j, T_cam0_cam1);
-        renderer.render(lens, ex, colour, idx | 0x80000000u, warm, &layers);
-        reuse1->add(warm, layers, ex.T_world_camera_open,
-                    static_cast<double>(ex.scene_time_open_ns) * 1e-9);
-      }
+      renderReused(j, Pose{}, idx, colour, *reuse, warm);
+      if (reuse1) renderReused(j, T_cam0_cam1, idx | 0x80000000u, colour, *reuse1, warm);
     }
   };
 

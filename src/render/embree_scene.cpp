@@ -332,6 +332,27 @@ RTCScene EmbreeScene::meshScene(int mesh_index, const Scene& scene) {
   return sub;
 }
 
+namespace {
+
+/// Triangle t of object o's mesh in world space; a degenerate one has area 0 and normal +z.
+WorldTriangle worldTriangle(const Object& o, const Mesh& mesh, const Tri& t) {
+  Vec3f p[3];
+  for (int k = 0; k < 3; ++k)
+    p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous())
+               .head<3>()
+               .cast<float>();
+  WorldTriangle w;
+  w.p0 = p[0];
+  w.e1 = p[1] - p[0];
+  w.e2 = p[2] - p[0];
+  const Vec3f c = w.e1.cross(w.e2);
+  w.area = 0.5f * c.norm();
+  w.normal = c.norm() > 0 ? Vec3f(c.normalized()) : Vec3f(0, 0, 1);
+  return w;
+}
+
+}  // namespace
+
 void EmbreeScene::buildLights(const Scene& scene) {
   std::vector<EmissiveTriangle> triangles;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -341,46 +362,22 @@ void EmbreeScene::buildLights(const Scene& scene) {
     if (!mat.isEmissive() || mesh.isSphere()) continue;  // emissive spheres: not sampled yet
     objects_[i].first_light = static_cast<int>(triangles.size());
     for (const Tri& t : mesh.triangles) {
-      Vec3f p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous())
-                   .head<3>()
-                   .cast<float>();
       EmissiveTriangle e;
-      e.p0 = p[0];
-      e.e1 = p[1] - p[0];
-      e.e2 = p[2] - p[0];
-      Vec3f c = e.e1.cross(e.e2);
-      e.area = 0.5f * c.norm();
-      e.normal = c.norm() > 0 ? Vec3f(c.normalized()) : Vec3f(0, 0, 1);
+      static_cast<WorldTriangle&>(e) = worldTriangle(o, mesh, t);
       e.radiance = mat.emission;
       e.group = static_cast<int>(i);
       triangles.push_back(e);
     }
   }
   // window panes: skies are also sampled through them (lights.h, sky portals), at their rest
-  // placement (a moving pane would only make the portal less apt, never the image biased)
+  // placement (a moving pane would only make the portal less apt, never the image biased);
+  // SceneLights drops degenerate triangles
   std::vector<PortalTriangle> portals;
   for (const Object& o : scene.objects) {
     const Mesh& mesh = scene.meshes[o.mesh];
     if (scene.materials[o.material].type != MaterialType::ThinDielectric || mesh.isSphere())
       continue;
-    for (const Tri& t : mesh.triangles) {
-      Vec3f p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous())
-                   .head<3>()
-                   .cast<float>();
-      PortalTriangle q;
-      q.p0 = p[0];
-      q.e1 = p[1] - p[0];
-      q.e2 = p[2] - p[0];
-      const Vec3f c = q.e1.cross(q.e2);
-      q.area = 0.5f * c.norm();
-      if (!(q.area > 0.f)) continue;
-      q.normal = c.normalized();
-      portals.push_back(q);
-    }
+    for (const Tri& t : mesh.triangles) portals.push_back(worldTriangle(o, mesh, t));
   }
   lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), std::move(portals));
 }

@@ -161,8 +161,7 @@ bool SceneLights::sample(const PickPoint& at, float u_pick, const Eigen::Vector2
   ux = width > 0.f ? std::clamp((ux - lo) / width, 0.f, 0.99999994f) : 0.5f;
   const size_t i = g.first + j;
   const EmissiveTriangle& e = triangles_[i];
-  float su = std::sqrt(ux);
-  Vec3f q = e.p0 + e.e1 * (1.f - su) + e.e2 * (su * u.y());
+  Vec3f q = e.point({ux, u.y()});
   Vec3f wq = q - p;
   float dist2 = wq.squaredNorm();
   if (dist2 <= 0.f) return false;
@@ -176,14 +175,28 @@ bool SceneLights::sample(const PickPoint& at, float u_pick, const Eigen::Vector2
   return true;
 }
 
+bool SceneLights::sampleOwnSky(const Analytic& a, const Eigen::Vector2f& u, Vec3f& d,
+                               Vec3f& radiance, float& pdf) const {
+  if (a.envmap >= 0) return envmaps_[a.envmap].sample(u, d, radiance, pdf);
+  if (a.sky >= 0) return skies_[a.sky].sample(u, d, radiance, pdf);
+  // uniform direction on the sphere
+  const float z = 1.f - 2.f * u.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
+  const float phi = 2.f * kPi * u.y();
+  d = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+  radiance = a.rgb;
+  pdf = 1.f / (4.f * kPi);
+  return true;
+}
+
 bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                                  LightSample& out) const {
-  const float portal_w =
-      a.type == LightType::Sky && !portals_.empty() ? portalWeight(p) : 0.f;
-  if (portal_w > 0.f) {
+  if (a.type == LightType::Sky) {
+    out.dist = std::numeric_limits<float>::infinity();
+    out.delta = false;
+    const float portal_w = portals_.empty() ? 0.f : portalWeight(p);
+    if (!(portal_w > 0.f)) return sampleOwnSky(a, u, out.wi, out.radiance, out.pdf);
     // the mixture of the sky's own table and the portals (see lights.h)
-    float ux = u.x();
-    Vec3f d;
+    const float ux = u.x();
     if (ux < kPortalShare) {
       // a portal triangle by its weight at p, ux rescaled within its share for the point
       const float target = ux / kPortalShare * portal_w;
@@ -195,53 +208,21 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
       }
       if (i == portals_.size()) i = portals_.size() - 1;
       const float v = w > 0.f ? std::clamp((target - (acc - w)) / w, 0.f, 0.99999994f) : 0.5f;
-      const PortalTriangle& t = portals_[i];
-      const float su = std::sqrt(v);
-      const Vec3f q = t.p0 + t.e1 * (1.f - su) + t.e2 * (su * u.y());
-      const Vec3f wq = q - p;
+      const Vec3f wq = portals_[i].point({v, u.y()}) - p;
       const float len = wq.norm();
       if (!(len > 0.f)) return false;
-      d = wq / len;
+      out.wi = wq / len;
     } else {
       const Eigen::Vector2f uu(
           std::min((ux - kPortalShare) / (1.f - kPortalShare), 0.99999994f), u.y());
       Vec3f radiance;
       float own_pdf;
-      if (a.envmap >= 0) {
-        if (!envmaps_[a.envmap].sample(uu, d, radiance, own_pdf)) return false;
-      } else if (a.sky >= 0) {
-        if (!skies_[a.sky].sample(uu, d, radiance, own_pdf)) return false;
-      } else {
-        const float z = 1.f - 2.f * uu.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
-        const float phi = 2.f * kPi * uu.y();
-        d = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
-      }
+      if (!sampleOwnSky(a, uu, out.wi, radiance, own_pdf)) return false;
     }
-    out.wi = d;
-    out.radiance = skyRadiance(a, d);
-    out.pdf = (1.f - kPortalShare) * ownSkyPdf(a, d) + kPortalShare * portalPdf(p, d, portal_w);
-    out.dist = std::numeric_limits<float>::infinity();
-    out.delta = false;
+    out.radiance = skyRadiance(a, out.wi);
+    out.pdf = (1.f - kPortalShare) * ownSkyPdf(a, out.wi) +
+              kPortalShare * portalPdf(p, out.wi, portal_w);
     return out.pdf > 0.f && out.radiance.maxCoeff() > 0.f;
-  }
-  if (a.envmap >= 0 || a.sky >= 0) {
-    const bool ok = a.envmap >= 0 ? envmaps_[a.envmap].sample(u, out.wi, out.radiance, out.pdf)
-                                  : skies_[a.sky].sample(u, out.wi, out.radiance, out.pdf);
-    if (!ok) return false;
-    out.dist = std::numeric_limits<float>::infinity();
-    out.delta = false;
-    return true;
-  }
-  if (a.type == LightType::Sky) {
-    // uniform direction on the sphere
-    float z = 1.f - 2.f * u.x(), r = std::sqrt(std::max(0.f, 1.f - z * z));
-    float phi = 2.f * kPi * u.y();
-    out.wi = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
-    out.dist = std::numeric_limits<float>::infinity();
-    out.radiance = a.rgb;
-    out.pdf = 1.f / (4.f * kPi);
-    out.delta = false;
-    return true;
   }
   if (a.type == LightType::Sun) {
     // uniform direction inside the cone of the sun's disk, around -direction

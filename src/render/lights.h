@@ -27,6 +27,7 @@
 // choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
 // their `pdf` is the pick probability alone and `delta` is set, so the integrator skips MIS.
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include "render/sky.h"
@@ -34,21 +35,28 @@
 
 namespace inet {
 
-/// An emissive triangle in world space (one-sided: emits along `normal`).
-struct EmissiveTriangle {
+/// A triangle in world space.
+struct WorldTriangle {
   Vec3f p0, e1, e2;  ///< vertex and edges
   Vec3f normal;      ///< unit geometric normal
   float area = 0.f;
+
+  /// The uniformly distributed point of u in [0,1)^2 (u.x through its square root).
+  Vec3f point(const Eigen::Vector2f& u) const {
+    const float su = std::sqrt(u.x());
+    return p0 + e1 * (1.f - su) + e2 * (su * u.y());
+  }
+};
+
+/// An emissive triangle (one-sided: emits along `normal`).
+struct EmissiveTriangle : WorldTriangle {
   Vec3f radiance;
   int group = 0;  ///< the emissive object it belongs to (consecutive triangles share it)
 };
 
-/// A triangle of a window pane, through which skies are also sampled (see above).
-struct PortalTriangle {
-  Vec3f p0, e1, e2;  ///< vertex and edges
-  Vec3f normal;      ///< unit geometric normal (either side)
-  float area = 0.f;
-};
+/// A triangle of a window pane, through which skies are also sampled (see above); its normal
+/// may face either side.
+using PortalTriangle = WorldTriangle;
 
 struct LightSample {
   Vec3f wi;          ///< unit direction from p toward the light
@@ -122,6 +130,9 @@ class SceneLights {
   };
   bool sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen::Vector2f& u,
                       LightSample& out) const;
+  /// A direction from a sky's own table (uniform for a uniform sky), its radiance and pdf.
+  bool sampleOwnSky(const Analytic& a, const Eigen::Vector2f& u, Vec3f& d, Vec3f& radiance,
+                    float& pdf) const;
   /// A sky's own radiance and solid-angle pdf (its table, or uniform) along d.
   Vec3f skyRadiance(const Analytic& a, const Vec3f& d) const;
   float ownSkyPdf(const Analytic& a, const Vec3f& d) const;

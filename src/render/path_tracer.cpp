@@ -40,6 +40,12 @@ float powerHeuristic(float a, float b) {
   return a * a / (a * a + b * b);
 }
 
+/// What IntegratorOutputs splits off at a path's first surface.
+struct FirstSurface {
+  Vec3f diffuse = Vec3f::Zero();  ///< light it reflects through its diffuse lobes
+  Vec3f albedo = Vec3f::Zero();   ///< its albedo
+};
+
 float offsetScale(const Vec3f& p) {
   return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff());
 }
@@ -87,6 +93,9 @@ class PathTracer final : public Integrator {
     const CameraIntrinsics& K = ctx.lens.K;
     const int spp = ctx.options.spp;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
+    // the first surface's diffuse light and albedo, only when a layer asks for them
+    const bool split =
+        out.diffuse || out.diffuse_variance || out.rest_variance || out.albedo;
     // timed: the exposure has a duration and something moves (camera or objects); every sample
     // then draws its time, which places the camera (moving) and the objects (ray time)
     const bool timed = ctx.exposure != nullptr && ctx.exposure->span() > 0;
@@ -173,18 +182,22 @@ class PathTracer final : public Integrator {
         first.hit.primID = rh.hit.primID[k];
         first.hit.geomID = rh.hit.geomID[k];
         first.hit.instID[0] = rh.hit.instID[0][k];
-        Vec3f le, d, albedo;
-        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, d, albedo, rays, &first);
+        Vec3f le;
+        FirstSurface fs;
+        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
+                           &first);
         Lane& l = lanes[k];
         l.sum += v;
         l.sum_le += le;
         Vec3f reflected = v - le;  // the variance guide describes what gets filtered
         l.sum2 += reflected.cwiseProduct(reflected);
-        l.sum_d += d;
-        l.sum_albedo += albedo;
-        l.sum2_d += d.cwiseProduct(d);
-        const Vec3f rest = reflected - d;
-        l.sum2_rest += rest.cwiseProduct(rest);
+        if (split) {
+          l.sum_d += fs.diffuse;
+          l.sum_albedo += fs.albedo;
+          l.sum2_d += fs.diffuse.cwiseProduct(fs.diffuse);
+          const Vec3f rest = reflected - fs.diffuse;
+          l.sum2_rest += rest.cwiseProduct(rest);
+        }
       }
     }
     const float n = static_cast<float>(spp);
@@ -283,28 +296,27 @@ class PathTracer final : public Integrator {
     return Vec3f::Zero();  // more panes than any window has: treat as blocked
   }
 
-  /// hit (directly visible lights), which the denoiser must leave alone; `diffuse` receives the
-  /// part reflected through the first surface's diffuse lobes and `first_albedo` that surface's
-  /// albedo (IntegratorOutputs).
+  /// hit (directly visible lights), which the denoiser must leave alone; `first_surface`, when
+  /// given, receives what IntegratorOutputs splits off at the first surface.
   /// `rays` counts the rays traced.
   /// `pixel_spread` is the angle of one pixel (radians), for texture footprints. `first`, when
   /// given, is the camera ray's hit, already traced (in a packet) and counted.
   Vec3f radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                 Vec3f& seen_emission, Vec3f& diffuse, Vec3f& first_albedo, uint64_t& rays,
+                 Vec3f& seen_emission, FirstSurface* first_surface, uint64_t& rays,
                  const RTCRayHit* first = nullptr) const;
 };
 
 Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
-                           Vec3f& seen_emission, Vec3f& diffuse, Vec3f& first_albedo,
-                           uint64_t& rays, const RTCRayHit* first) const {
+                           Vec3f& seen_emission, FirstSurface* first_surface, uint64_t& rays,
+                           const RTCRayHit* first) const {
   seen_emission = Vec3f::Zero();
-  diffuse = Vec3f::Zero();
-  first_albedo = Vec3f::Zero();
   // The diffuse share of the first surface (scattering vertex 0): its light sample adds
-  // f_diffuse / f of its contribution to `diffuse` at once; everything gathered after its BSDF
-  // sample (L - L_at_first) is split by that direction's f_diffuse / f, `share`, at the end.
-  Vec3f share = Vec3f::Zero(), L_at_first = Vec3f::Zero();
-  bool first_scattered = false;
+  // f_diffuse / f of its contribution to the diffuse light at once; everything gathered after
+  // its BSDF sample (L - L_at_first) is split by that direction's f_diffuse / f, `share`, at the
+  // end. `splitting` until the first surface has scattered, when asked.
+  Vec3f diffuse = Vec3f::Zero(), share = Vec3f::Zero(), L_at_first = Vec3f::Zero();
+  bool splitting = first_surface != nullptr;
+  if (first_surface) *first_surface = FirstSurface{};
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
   float path_length = 0.f;    // metres travelled so far (for the texture footprint)
@@ -363,7 +375,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
                   pixel_spread * path_length, sp);
     const BsdfParams& bsdf = sp.bsdf;
-    if (!first_scattered) first_albedo = sp.albedo;
+    if (splitting) first_surface->albedo = sp.albedo;
     const bool lambert = bsdf.type == BsdfType::Lambertian;
     // Lambertian (the common case) keeps a fast path: two-sided, normal turned to face the ray.
     // Other BSDFs work in the frame of the shading normal (which lies on the geometric normal's
@@ -423,7 +435,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
           L += throughput.cwiseProduct(f_cos.cwiseProduct(ls.radiance).cwiseProduct(through)) *
                (w / ls.pdf);
-          if (!first_scattered) {
+          if (splitting) {
             const Vec3f f_diffuse =
                 lambert ? f_cos : evalBsdfDiffuse(bsdf, wo, frame.toLocal(ls.wi));
             diffuse += throughput.cwiseProduct(
@@ -440,7 +452,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (n_face.dot(wi) <= 0.f) break;  // below the geometric surface (shading normal)
       prev_bsdf_pdf = std::max(ns_face.dot(wi), 0.f) / kPi;
       if (prev_bsdf_pdf <= 0.f) break;
-      if (!first_scattered) share = Vec3f::Ones();
+      if (splitting) share = Vec3f::Ones();
       no_mis = false;
       straight = 0.f;
       light_at = at;
@@ -450,7 +462,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (!bs || bs->pdf <= 0.f) break;
       wi = frame.toWorld(bs->wi).normalized();
       if (!consistent(wi, bs->wi.z())) break;
-      if (!first_scattered && !bs->delta) {
+      if (splitting && !bs->delta) {
         const Vec3f f = evalBsdf(bsdf, wo, bs->wi), f_diffuse = evalBsdfDiffuse(bsdf, wo, bs->wi);
         for (int c = 0; c < 3; ++c) share[c] = f[c] > 0.f ? std::min(1.f, f_diffuse[c] / f[c]) : 0.f;
       }
@@ -466,8 +478,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       }
       throughput = throughput.cwiseProduct(bs->weight);
     }
-    if (!first_scattered) {
-      first_scattered = true;
+    if (splitting) {
+      splitting = false;
       L_at_first = L;
     }
     if (throughput.maxCoeff() <= 0.f) break;
@@ -481,7 +493,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     }
     ray = Ray{offset(wi), wi, ray.time};
   }
-  if (first_scattered) diffuse += share.cwiseProduct(L - L_at_first);
+  if (first_surface) first_surface->diffuse = diffuse + share.cwiseProduct(L - L_at_first);
   return L;
 }
 

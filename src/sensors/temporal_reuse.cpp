@@ -107,7 +107,8 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   const bool wrap_u = lens_.type == LensType::Panorama;
   for (size_t j = 0; j < past_.size(); ++j) {
     const Past& p = past_[j];
-    const ObjectMotion motion = objectMotionBetween(scene_, scene_time_s, p.scene_time_s);
+    const ObjectMotion motion =
+        has_motion_ ? objectMotionBetween(scene_, scene_time_s, p.scene_time_s) : ObjectMotion{};
     const FlowField f = forwardFlow(now, FlowFrameView{p.depth, p.instance, p.T_world_camera},
                                     lens_, motion, options_.flow);
     std::vector<Taps>& src = source[j];
