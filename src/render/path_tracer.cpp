@@ -46,6 +46,20 @@ struct FirstSurface {
   Vec3f albedo = Vec3f::Zero();   ///< its albedo
 };
 
+/// Widest spread (radians) a rough bounce gives the texture cone: conservative next to the
+/// 2 pi / spp steradians a diffuse sample stands for (0.63 rad at 16 spp), so that texture detail
+/// an indirect ray could still resolve is kept.
+constexpr float kIndirectConeSpread = 0.1f;
+
+/// Angular width of a BSDF's non-delta lobes, capped at kIndirectConeSpread: diffuse lobes are
+/// wide; a GGX lobe is about alpha radians (a Plastic's coat counts, as its base may not be the
+/// lobe sampled).
+float lobeSpread(const BsdfParams& b) {
+  if (b.type == BsdfType::Lambertian || b.type == BsdfType::Translucent)
+    return kIndirectConeSpread;
+  return std::min(kIndirectConeSpread, std::sqrt(b.alpha_x * b.alpha_y));
+}
+
 float offsetScale(const Vec3f& p) {
   return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff());
 }
@@ -319,7 +333,15 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   if (first_surface) *first_surface = FirstSurface{};
   const EmbreeScene& scene = ctx.scene;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
-  float path_length = 0.f;    // metres travelled so far (for the texture footprint)
+  // Texture footprint: a ray cone (Akenine-Moller et al. 2021) of width `cone_width` at the
+  // current hit, widening by `cone_spread` radians per metre travelled. From the camera it is the
+  // pixel's own spread; a rough bounce widens it to the lobe's angular width, at most
+  // kIndirectConeSpread, as production renderers filter textures seen by indirect rays
+  // (Christensen et al. 2003: a diffuse ray stands for a solid angle of about 2 pi / spp, far
+  // wider than a pixel). Those lookups then read coarse mip levels that stay in cache instead of
+  // full-resolution texels at random places; the light they reflect averages over the lobe
+  // anyway. The first surface (what the camera sees, the albedo guide) is unchanged.
+  float cone_width = 0.f, cone_spread = pixel_spread;
   float prev_bsdf_pdf = 0.f;  // solid-angle pdf of the BSDF sample that produced `ray` (or, for
                               // a delta lobe, the probability of having chosen it)
   // Straight through a thin pane is not a new path vertex for MIS: light sampling looks through
@@ -356,7 +378,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     Vec3f ng = scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     float t = rh.ray.tfar;
     Vec3f p = ray.o + t * ray.d;
-    path_length += t;
+    cone_width += cone_spread * t;
     float cos_emit = -ng.dot(ray.d);
     if (s.first_light >= 0 && cos_emit > 0.f) {
       float w = 1.f;
@@ -369,11 +391,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (from_camera) seen_emission = s.emission;
     }
     if (bounce >= ctx.options.max_bounces) break;
-    // Texture footprint: a ray cone of the camera's pixel spread along the whole path so far
-    // (pbrt-v4 likewise reuses the camera's footprint for indirect rays).
     SurfacePoint sp;
-    scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
-                  pixel_spread * path_length, sp);
+    scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d, cone_width, sp);
     const BsdfParams& bsdf = sp.bsdf;
     if (splitting) first_surface->albedo = sp.albedo;
     const bool lambert = bsdf.type == BsdfType::Lambertian;
@@ -453,6 +472,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       prev_bsdf_pdf = std::max(ns_face.dot(wi), 0.f) / kPi;
       if (prev_bsdf_pdf <= 0.f) break;
       if (splitting) share = Vec3f::Ones();
+      cone_spread = std::max(cone_spread, kIndirectConeSpread);
       no_mis = false;
       straight = 0.f;
       light_at = at;
@@ -472,6 +492,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         --bounce;
       } else {
         prev_bsdf_pdf = bs->pdf;
+        if (!bs->delta) cone_spread = std::max(cone_spread, lobeSpread(bsdf));
         no_mis = bs->delta;
         straight = 0.f;
         light_at = at;

@@ -6,9 +6,11 @@
 
 #include <cmath>
 
+#include "core/image_io.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/primitives.h"
+#include "../temp_dir.h"
 
 namespace inet {
 namespace {
@@ -300,6 +302,66 @@ TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   Frame c;
   r.render(K, pose, opt, 8, c);
   EXPECT_NE(a.rgb.data, c.rgb.data);
+}
+
+// Textures seen by indirect rays are read through a cone that a rough bounce widens
+// (kIndirectConeSpread): the furnace's floor carries a millimetre checkerboard of albedo 0 and 1,
+// and a narrow camera looks at the plain ceiling, so the checker reaches the image only through
+// bounces. The ceiling's mean must equal the one with a flat floor of the checker's mean albedo
+// (filtering keeps the mean), and so must its noise: a path reading single checker texels would
+// carry throughput 0 or 1 instead of 0.5. Measured: mean 1.9905 and variance 0.00792 for both
+// floors; with the cone's spread set to 0 (the camera's pixel spread only), the checker's
+// variance was 0.0119, 1.5x, and the test failed.
+TEST(PathTracer, IndirectRaysReadTexturesThroughAWidenedConeWithTheSameMean) {
+  test::TempDir dir("cone");
+  ImageF checker(64, 64, 3), flat(64, 64, 3);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) {
+        checker.data[(y * 64 + x) * 3 + c] = ((x + y) & 1) ? 1.f : 0.f;
+        flat.data[(y * 64 + x) * 3 + c] = 0.5f;
+      }
+  writeExr(dir.path() / "checker.exr", checker, {"R", "G", "B"});
+  writeExr(dir.path() / "flat.exr", flat, {"R", "G", "B"});
+  auto ceiling = [&](const char* texture) {
+    Scene s = furnace(0.5f, 1.0f);
+    s.meshes.push_back(makePrimitive("quad", {}, "test", "floor"));
+    Material m;
+    m.id = "floor";
+    m.albedo = Vec3f::Ones();
+    m.emission = Vec3f::Ones();
+    m.albedo_texture = TextureRef{texture, (dir.path() / texture).string()};
+    m.uv_scale = Vec2f(60.f, 60.f);  // a 6.7 cm tile of 64 checks: one check is 1 mm
+    s.materials.push_back(m);
+    Object floor;
+    floor.name = "floor";
+    floor.mesh = 1;
+    floor.material = 1;
+    floor.nyu40 = 2;
+    floor.instance = 2;
+    floor.T_world_object = (Eigen::Translation3d(0, 0, 0.001) * Eigen::Scaling(Vec3(4, 4, 1))).matrix();
+    s.objects.push_back(floor);
+    Renderer r(s);
+    Frame f;
+    // fx 4000: a pixel spreads 0.25 mrad, a footprint under 1 mm everywhere in the box
+    r.render(CameraIntrinsics::centred(48, 48, 4000),
+             Pose::lookAt(Vec3(0.2, 0.1, 1.0), Vec3(0.2, 0.1, 2.0), Vec3::UnitX()), rgbOnly(4, 6),
+             3, f);
+    double sum = 0, sq = 0;
+    const size_t n = f.rgb.data.size() / 3;
+    for (size_t i = 0; i < n; ++i) {
+      const double v = f.rgb.data[3 * i + 1];
+      sum += v;
+      sq += v * v;
+    }
+    const double mean = sum / n;
+    return std::make_pair(mean, sq / n - mean * mean);
+  };
+  const auto [mean_checker, var_checker] = ceiling("checker.exr");
+  const auto [mean_flat, var_flat] = ceiling("flat.exr");
+  EXPECT_NEAR(mean_flat, 2.0, 0.03);  // the furnace: Le / (1 - a) everywhere
+  EXPECT_NEAR(mean_checker / mean_flat, 1.0, 0.015);
+  EXPECT_LT(var_checker, 1.15 * var_flat) << "checker " << var_checker << ", flat " << var_flat;
 }
 
 /// The built-in room with every material made `type` (emitters keep their emission), rendered
