@@ -1,5 +1,7 @@
 // interiornet eval ate | rpe: evaluate an estimated trajectory (a SLAM or odometry result)
 // against ground truth, as TUM's evaluate_ate.py / evaluate_rpe.py and evo's ape / rpe do.
+// (eval features | odometry, which measure a sequence folder itself, are in
+// cmd_eval_sequence.cpp.)
 // Input files in any format trajectory/formats.h reads (TUM, EuRoC csv, ...); text output is a
 // small table, --json one JSON object with every statistic, --plot a PNG.
 #include <cctype>
@@ -210,7 +212,9 @@ void runRpe(const EvalArgs& a) {
 
 void registerEval(CLI::App& app) {
   auto* eval = app.add_subcommand(
-      "eval", "Evaluate an estimated trajectory against ground truth (ATE, RPE)");
+      "eval",
+      "Evaluate an estimated trajectory against ground truth (ATE, RPE), or how SLAM-worthy a "
+      "sequence is (ORB matches against the exact flow, RGB-D odometry)");
   eval->require_subcommand(1);
 
   auto* ate = eval->add_subcommand(
@@ -233,6 +237,8 @@ void registerEval(CLI::App& app) {
   rpe->add_flag("--all-pairs", rpe_args->all_pairs,
                 "a pair starting at every pose, not consecutive disjoint pairs");
   rpe->callback([rpe_args] { runRpe(*rpe_args); });
+
+  addSequenceEvalCommands(eval);
 }
 
 }  // namespace inet::app

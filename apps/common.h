@@ -141,5 +141,6 @@ void registerEvents(CLI::App& app);
 void registerVary(CLI::App& app);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 void addTrainStyleCommand(CLI::App* trajectory_cmd);
+void addSequenceEvalCommands(CLI::App* eval_cmd);
 
 }  // namespace inet::app

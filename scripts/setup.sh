@@ -12,6 +12,7 @@ PACKAGES=(
   libtorch-dev
   libhdf5-dev
   libyaml-cpp-dev
+  libopencv-dev libopencv-contrib-dev
   libbullet-dev
   libtinygltf-dev
 )
