@@ -75,6 +75,7 @@ struct GenerateArgs {
   bool allow_dark = false;
   bool place_trajectory = false;
   ResponseArgs response;
+  std::string exposure = "auto";  ///< auto: metered per sequence (meterPreview); fixed
   CameraIntrinsics K;
   bool width_set = false, height_set = false, fx_set = false, fy_set = false;
   bool cx_set = false, cy_set = false;
@@ -471,45 +472,66 @@ void runGenerate(const GenerateArgs& a) {
 
 /// A scene with no light where the camera looks renders black frames, and a silent black
 /// sequence costs a user hours: before anything is written, 5 poses spread over the path are
-/// rendered small (80 px wide, 4 spp, the same lens field of view for a pinhole) and their mean
-/// linear luminance, after the exposure, must reach kDarkFloor (sRGB 3/255) unless --allow-dark.
-/// A preview a quarter or more clipped at white is warned about, with the exposure that fixes it.
+/// rendered small (80 px wide, 8 spp, the same lens field of view for a pinhole) and their mean
+/// linear luminance, at the fixed exposure (--exposure-ev alone), must reach kDarkFloor (sRGB
+/// 3/255) unless --allow-dark.
+///
+/// The same preview meters the sequence's auto exposure (`--exposure auto`, the default), as a
+/// camera does before it records: one linear multiplier for the whole sequence (no flicker, and
+/// frames stay comparable for photometric SLAM) that puts the log-average luminance of the
+/// preview at kMiddleGrey (Reinhard et al. 2002's key; sRGB 118/255), in third stops, within
+/// +-kAutoRangeEv. Windows in full daylight then blow out a little, as in a photograph of a room,
+/// instead of the room itself clipping at white (42 % of an apartment's pixels at the fixed
+/// exposure). The log-average is taken over 2x2 blocks of the preview (32 samples each): the log
+/// of a single noisy 8-spp pixel would meter darker than the scene is.
+/// A preview a quarter or more clipped at white after the exposure is warned about, with the
+/// compensation that fixes it. Returns the multiplier (1 for --exposure fixed).
 constexpr double kDarkFloor = 1e-3;
+constexpr double kMiddleGrey = 0.18;
+constexpr double kAutoRangeEv = 8.0;
 
-void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensModel& lens,
-                  const Trajectory& traj, const RenderOptions& opt, const std::string& where,
-                  bool path_leaves_scene) {
+float meterPreview(const GenerateArgs& a, const Renderer& renderer, const LensModel& lens,
+                   const Trajectory& traj, const RenderOptions& opt, const std::string& where,
+                   bool path_leaves_scene) {
   CameraIntrinsics K = lens.K;
   const double s = 80.0 / K.width;
-  K = CameraIntrinsics{80, std::max(1, static_cast<int>(std::lround(K.height * s))), K.fx * s,
+  K = CameraIntrinsics{80, std::max(2, static_cast<int>(std::lround(K.height * s))), K.fx * s,
                        K.fy * s, K.cx * s, K.cy * s};
   const LensModel preview = lens.type == LensType::Pinhole || lens.type == LensType::ThinLens
                                 ? LensModel::pinhole(K)
                                 : LensModel::pinhole(CameraIntrinsics::centred(80, 60, 40.0));
   RenderOptions ro = opt;
-  ro.spp = 4;
+  ro.spp = 8;
   ro.denoise = false;
   ro.passes = static_cast<PassMask>(Pass::Rgb);
-  CameraResponse response;
-  response.exposure_ev = a.response.exposure_ev;
-  double sum = 0.0;
-  size_t pixels = 0;
-  std::vector<float> peaks;  // brightest channel of each pixel, after the exposure
+  CameraResponse fixed;
+  fixed.exposure_ev = a.response.exposure_ev;
+  double sum = 0.0, log_sum = 0.0;
+  size_t pixels = 0, blocks = 0;
+  std::vector<float> peaks;  // brightest channel of each pixel, before any exposure
   Frame f;
   for (int k = 0; k < 5; ++k) {
     const size_t i = (traj.size() - 1) * static_cast<size_t>(k) / 4;
     renderer.render(preview, CameraExposure::fixed(traj.poses[i].T_world_camera), ro,
                     0x40000000u + static_cast<uint32_t>(k), f);
+    auto lum = [&](int x, int y) {
+      return luminance(Eigen::Vector3f(f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2)));
+    };
     for (int y = 0; y < f.rgb.height; ++y)
       for (int x = 0; x < f.rgb.width; ++x) {
-        const Eigen::Vector3f rgb(f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2));
-        sum += response.multiplier() * luminance(rgb);
-        peaks.push_back(response.multiplier() * rgb.maxCoeff());
+        sum += lum(x, y);
+        peaks.push_back(std::max({f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2)}));
         ++pixels;
       }
+    for (int y = 0; y + 1 < f.rgb.height; y += 2)
+      for (int x = 0; x + 1 < f.rgb.width; x += 2) {
+        const double block = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1));
+        log_sum += std::log(1e-4 + std::max(0.0, block));
+        ++blocks;
+      }
   }
-  const double mean = sum / static_cast<double>(std::max<size_t>(pixels, 1));
-  if (mean < kDarkFloor)
+  const double mean = fixed.multiplier() * sum / static_cast<double>(std::max<size_t>(pixels, 1));
+  if (mean < kDarkFloor && !a.allow_dark)
     throw InputError(where, "--allow-dark",
                      fmt::format("the colour frames are essentially black (mean brightness {:.1e} "
                                  "of white over 5 previewed poses): {}, or pass --allow-dark",
@@ -520,17 +542,27 @@ void checkNotDark(const GenerateArgs& a, const Renderer& renderer, const LensMod
                                      : "nothing lights what the camera sees; add lights "
                                        "(--auto-lights on, --lights light.xml), raise "
                                        "--exposure-ev"));
+  float scale = 1.f;
+  if (a.exposure == "auto") {
+    const double log_average = std::exp(log_sum / static_cast<double>(std::max<size_t>(blocks, 1)));
+    const double ev = std::clamp(std::round(3.0 * std::log2(kMiddleGrey / log_average)) / 3.0,
+                                 -kAutoRangeEv, kAutoRangeEv);
+    scale = static_cast<float>(std::exp2(ev));
+  }
   // the other way to lose the picture: most of it clipped at white (an open scene in full sun)
-  const size_t clipped = std::count_if(peaks.begin(), peaks.end(), [](float v) { return v >= 1.f; });
+  const double m = scale * fixed.multiplier();
+  const size_t clipped =
+      std::count_if(peaks.begin(), peaks.end(), [m](float v) { return m * v >= 1.0; });
   if (clipped * 4 >= peaks.size()) {
     std::nth_element(peaks.begin(), peaks.begin() + peaks.size() * 9 / 10, peaks.end());
-    const double p90 = peaks[peaks.size() * 9 / 10];
+    const double p90 = m * peaks[peaks.size() * 9 / 10];
     std::fprintf(stderr,
                  "warning: %s: %.0f %% of the previewed colour pixels are at white (over-exposed); "
                  "--exposure-ev %.0f would bring 90 %% of them under it\n",
                  where.c_str(), 100.0 * clipped / peaks.size(),
                  a.response.exposure_ev - std::ceil(std::log2(p90 / 0.9)));
   }
+  return scale;
 }
 
 /// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.
@@ -557,9 +589,19 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
                                 {"parameters", depth_noise.toString()}};
   if (want.events) spec.meta["events"] = event_opt.sim.toString();
   Renderer renderer(scene, opt.integrator);
-  if (has(passes, Pass::Rgb) && !a.allow_dark)
-    checkNotDark(a, renderer, lens, traj, opt, a.scene.path.empty() ? "built-in room" : a.scene.path,
-                 cam.leaves_scene);
+  ResponseArgs response = a.response;
+  if (has(passes, Pass::Rgb) && (!a.allow_dark || a.exposure == "auto")) {
+    response.exposure_scale =
+        meterPreview(a, renderer, lens, traj, opt,
+                     a.scene.path.empty() ? "built-in room" : a.scene.path, cam.leaves_scene);
+    spec.meta["camera_response"] = response.describe();
+    spec.meta["auto_exposure"] =
+        a.exposure == "auto"
+            ? fmt::format("{:+.2f} EV: log-average luminance of a 5-pose preview to {} "
+                          "(apps/cmd_generate.cpp meterPreview)",
+                          std::log2(response.exposure_scale), kMiddleGrey)
+            : std::string("off (--exposure fixed)");
+  }
   SequenceWriter writer(spec, traj, formats);
 
   if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
@@ -641,7 +683,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     const TimeNs scene_t = traj.poses[k].t_ns - traj.poses.front().t_ns;
     if (!complete[k]) {
       const auto idx = static_cast<uint32_t>(k);
-      const bool respond = !a.response.identity() && has(passes, Pass::Rgb);
+      const bool respond = !response.identity() && has(passes, Pass::Rgb);
       // this frame and its neighbours, for the flow; cam1's are moved by the baseline
       auto neighbour = [&](size_t j, const Pose& T_rig) {
         return NeighbourFrame{traj.poses[j].T_world_camera * T_rig,
@@ -658,13 +700,13 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
       warmUp(k);
       renderColour(k, Pose{}, idx, temporal ? &*reuse : nullptr, frame);
       derive(Pose{}, idx, frame);
-      if (respond) shown = a.response.apply(frame.rgb, opt.seed, idx);
+      if (respond) shown = response.apply(frame.rgb, opt.seed, idx);
       if (a.stereo > 0) {
         // cam1: every pose of the exposure moved by the baseline; its own random numbers
         const uint32_t idx1 = idx | 0x80000000u;
         renderColour(k, T_cam0_cam1, idx1, temporal ? &*reuse1 : nullptr, frame1);
         derive(T_cam0_cam1, idx1, frame1);
-        if (respond) shown1 = a.response.apply(frame1.rgb, opt.seed, idx1);
+        if (respond) shown1 = response.apply(frame1.rgb, opt.seed, idx1);
       }
       writer.writeFrame(k, frame, respond ? &shown : nullptr, a.stereo > 0 ? &frame1 : nullptr,
                         respond && a.stereo > 0 ? &shown1 : nullptr);
@@ -766,6 +808,12 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--out", a->out,
                   "output root; frames go to OUT/<layout>/<sequence>/ (default out)");
   a->response.addTo(*cmd);
+  cmd->add_option("--exposure", a->exposure,
+                  "auto (default): one exposure per sequence, metered on a preview of 5 poses so "
+                  "that the log-average brightness is middle grey (0.18), in third stops, as a "
+                  "camera's auto exposure; --exposure-ev compensates it; meta.json says what it "
+                  "chose. fixed: radiance 1 is white (--exposure-ev alone)")
+      ->check(CLI::IsMember({"auto", "fixed"}));
   cmd->add_option("--exposure-ms", a->exposure_ms,
                   "exposure time per row in ms: motion blur along the trajectory (default 0)");
   cmd->add_option("--readout-ms", a->readout_ms,

@@ -178,15 +178,18 @@ void ResponseArgs::validate() const {
 ImageF ResponseArgs::apply(const ImageF& linear, uint64_t seed, uint32_t frame) const {
   CameraResponse r;
   r.exposure_ev = exposure_ev;
+  r.exposure_scale = exposure_scale;
   ImageF img = applyExposure(linear, r.multiplier());
   if (sensor_noise) img = applySensorNoise(img, SensorNoise{}, seed, frame);
   r.exposure_ev = 0.f;
+  r.exposure_scale = 1.f;
   r.curve = parseToneCurve(tone, "", "--tone");
   return applyExposureAndCurve(img, r);
 }
 
 std::string ResponseArgs::describe() const {
-  return fmt::format("exposure_ev={} tone={} sensor_noise={}", exposure_ev, tone,
+  return fmt::format("exposure_ev={} exposure_scale={} tone={} sensor_noise={}", exposure_ev,
+                     exposure_scale, tone,
                      sensor_noise ? SensorNoise{}.describe() : std::string("off"));
 }
 

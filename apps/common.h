@@ -43,12 +43,16 @@ struct SceneArgs {
 /// ground truth are never touched.
 struct ResponseArgs {
   float exposure_ev = 0.f;
+  /// Linear multiplier before exposure_ev: 1, or what `generate`'s auto exposure metered.
+  float exposure_scale = 1.f;
   std::string tone = "none";
   bool sensor_noise = false;
   void addTo(CLI::App& cmd);
   /// Validates the options (InputError naming the flag).
   void validate() const;
-  bool identity() const { return exposure_ev == 0.f && tone == "none" && !sensor_noise; }
+  bool identity() const {
+    return exposure_ev == 0.f && exposure_scale == 1.f && tone == "none" && !sensor_noise;
+  }
   /// Linear RGB -> display-referred linear RGB in [0, 1] (then sRGB-encoded by the writers).
   ImageF apply(const ImageF& linear, uint64_t seed, uint32_t frame) const;
   std::string describe() const;

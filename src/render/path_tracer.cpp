@@ -142,7 +142,20 @@ class PathTracer final : public Integrator {
     Ray ray[16];
     for (int s = 0; s < spp; ++s) {
       for (int k = 0; k < 16; ++k) {
+        // an inactive lane (outside the block, or no ray: a fisheye's corners) still holds a
+        // well-formed, empty ray (tfar < tnear): Debian's Embree is built with assertions on
+        // its packet rays, and aborted on the packet's uninitialised lanes (a fisheye at 1 spp;
+        // which garbage the stack held decided it)
         valid[k] = 0;
+        rh.ray.org_x[k] = rh.ray.org_y[k] = rh.ray.org_z[k] = 0.f;
+        rh.ray.dir_x[k] = rh.ray.dir_y[k] = 0.f;
+        rh.ray.dir_z[k] = 1.f;
+        rh.ray.tnear[k] = 0.f;
+        rh.ray.tfar[k] = -std::numeric_limits<float>::infinity();
+        rh.ray.time[k] = 0.f;
+        rh.ray.mask[k] = 0u;
+        rh.ray.id[k] = static_cast<unsigned>(k);
+        rh.ray.flags[k] = 0;
         Lane& l = lanes[k];
         if (!l.inside) continue;
         smp[k].emplace(ctx.options.seed, ctx.frame_index, l.pixel, static_cast<uint32_t>(s),

@@ -372,7 +372,8 @@ TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
 TEST(Generate, HdrExrIsTheLinearRadianceBehindThePng) {
   TempDir dir("gen_hdr");
   // the raw path-traced colour (no reuse, no denoiser): its brightest pixels exceed 1
-  const std::string common = kSmall + "--hdr --frames 2 --spp 2 --tone none --no-denoise --temporal 1 ";
+  const std::string common =
+      kSmall + "--hdr --frames 2 --spp 2 --tone none --no-denoise --temporal 1 --exposure fixed ";
   RunResult a = runInterinet(common + "--exposure-ev 0 --out " + (dir / "a").string());
   RunResult b = runInterinet(common + "--exposure-ev 2 --out " + (dir / "b").string());
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -402,6 +403,59 @@ TEST(Generate, HdrExrIsTheLinearRadianceBehindThePng) {
   EXPECT_GT(bright, 0u) << "radiance above 1 is kept: the EXR must not be clipped";
   auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
   EXPECT_TRUE(meta["encodings"].contains("rgb_exr"));
+}
+
+// Auto exposure (the default) meters the sequence once on its preview: one multiplier, a power
+// of 2 in third stops, for every frame (the PNG is the EXR times it, encoded), chosen so the
+// log-average brightness is middle grey; the linear EXR and the ground truth are those of a
+// fixed exposure, and --exposure-ev compensates on top.
+TEST(Generate, AutoExposureMetersOneMultiplierPerSequenceToMiddleGrey) {
+  TempDir dir("gen_auto_exposure");
+  const std::string common = kSmall + "--hdr --frames 3 --spp 4 ";
+  RunResult a = runInterinet(common + "--out " + (dir / "auto").string());
+  RunResult f = runInterinet(common + "--exposure fixed --out " + (dir / "fixed").string());
+  RunResult c = runInterinet(common + "--exposure-ev 1 --out " + (dir / "plus1").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  auto metaOf = [&](const char* run) {
+    return nlohmann::json::parse(readTextFile(seqDir(dir / run) / "meta.json"));
+  };
+  auto scaleOf = [](const nlohmann::json& meta) {
+    const std::string r = meta["camera_response"].get<std::string>();
+    const size_t at = r.find("exposure_scale=");
+    EXPECT_NE(at, std::string::npos) << r;
+    return std::stod(r.substr(at + 15));
+  };
+  const double scale = scaleOf(metaOf("auto"));
+  EXPECT_EQ(scaleOf(metaOf("fixed")), 1.0);
+  EXPECT_EQ(scaleOf(metaOf("plus1")), scale) << "--exposure-ev compensates, the metering stays";
+  const double thirds = 3.0 * std::log2(scale);
+  EXPECT_NEAR(thirds, std::round(thirds), 1e-4) << scale;
+  EXPECT_NE(metaOf("auto")["auto_exposure"].get<std::string>().find("EV"), std::string::npos);
+  EXPECT_NE(metaOf("fixed")["auto_exposure"].get<std::string>().find("off"), std::string::npos);
+  double log_sum = 0;
+  size_t n = 0;
+  for (const char* t : {"0000000000000000000", "0000000000040000000", "0000000000080000000"}) {
+    const fs::path s = seqDir(dir / "auto") / "cam0/data";
+    EXPECT_EQ(readTextFile(s / (std::string(t) + ".exr")),
+              readTextFile(seqDir(dir / "fixed") / "cam0/data" / (std::string(t) + ".exr")));
+    ImageF exr = readExr(s / (std::string(t) + ".exr"), {"R", "G", "B"});
+    ImageU8 png = readPng8(s / (std::string(t) + ".png"));
+    ASSERT_EQ(exr.data.size(), png.data.size());
+    int off = 0;
+    for (size_t i = 0; i < exr.data.size(); ++i)
+      off += std::abs(int(png.data[i]) - int(linearToSrgb8(float(scale) * exr.data[i]))) > 1;
+    EXPECT_EQ(off, 0) << t;
+    for (size_t i = 0; i + 2 < exr.data.size(); i += 3) {
+      const double y = 0.2126 * exr.data[i] + 0.7152 * exr.data[i + 1] + 0.0722 * exr.data[i + 2];
+      log_sum += std::log(1e-4 + scale * y);
+      ++n;
+    }
+  }
+  // the frames are not the preview (other poses in between, 4 spp, 160 px), so within 1/2 stop
+  const double log_average = std::exp(log_sum / n);
+  EXPECT_NEAR(std::log2(log_average / 0.18), 0.0, 0.5) << log_average << " at scale " << scale;
 }
 
 struct FileId {
