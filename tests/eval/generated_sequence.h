@@ -20,11 +20,14 @@ namespace inet::test {
 inline constexpr int kSeqFrames = 6;
 
 /// Generates the sequence under `out` and returns its folder (a failed run fails the test).
+/// The exposure is fixed: the bounds of the odometry tests were measured with it, and the
+/// photometric method is ill-conditioned on this view, so its figures move with the image gain
+/// alone (auto exposure's +1 EV here: ATE 12.0 -> 7.4 mm, unaligned drift 19 -> 31 mm).
 inline std::filesystem::path generateRoom(const std::filesystem::path& out) {
   const RunResult r = runInterinet(
       "generate --frames " + std::to_string(kSeqFrames) +
       " --width 240 --height 180 --fx 225 --fy 225 --spp 2 --passes rgb,depth,label,flow "
-      "--format asl --no-progress --out " +
+      "--format asl --exposure fixed --no-progress --out " +
       out.string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return out / "default_room" / "seq_000";
