@@ -139,11 +139,16 @@ void SequenceReader::requireFlow() const {
                      "flow pass, part of --passes default)");
 }
 
-ImageU8 SequenceReader::colour(size_t k) const {
-  const fs::path p = framePath("cam0", k, ".png");
+ImageU8 SequenceReader::png8(const char* folder, size_t k, const char* suffix,
+                             int channels) const {
+  const fs::path p = framePath(folder, k, suffix);
   ImageU8 img = readPng8(p);
-  checkSize(img, 3, p);
+  checkSize(img, channels, p);
   return img;
+}
+
+ImageU8 SequenceReader::colour(size_t k) const {
+  return png8("cam0", k, ".png", 3);
 }
 
 ImageF SequenceReader::depth(size_t k) const {
@@ -154,10 +159,7 @@ ImageF SequenceReader::depth(size_t k) const {
 }
 
 ImageU8 SequenceReader::labels(size_t k) const {
-  const fs::path p = framePath("label0", k, "_nyu.png");
-  ImageU8 img = readPng8(p);
-  checkSize(img, 1, p);
-  return img;
+  return png8("label0", k, "_nyu.png", 1);
 }
 
 FlowField SequenceReader::flow(size_t k) const {

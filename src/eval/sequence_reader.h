@@ -77,6 +77,8 @@ class SequenceReader {
 
  private:
   std::filesystem::path framePath(const char* folder, size_t k, const char* suffix) const;
+  /// Frame k's 8-bit PNG in `folder` with `suffix`, checked to be `channels` x the camera size.
+  ImageU8 png8(const char* folder, size_t k, const char* suffix, int channels) const;
   template <class Img>
   void checkSize(const Img& img, int channels, const std::filesystem::path& path) const;
 

@@ -333,14 +333,9 @@ TEST(PathTracer, IndirectRaysReadTexturesThroughAWidenedConeWithTheSameMean) {
     m.albedo_texture = TextureRef{texture, (dir.path() / texture).string()};
     m.uv_scale = Vec2f(60.f, 60.f);  // a 6.7 cm tile of 64 checks: one check is 1 mm
     s.materials.push_back(m);
-    Object floor;
-    floor.name = "floor";
-    floor.mesh = 1;
-    floor.material = 1;
-    floor.nyu40 = 2;
-    floor.instance = 2;
-    floor.T_world_object = (Eigen::Translation3d(0, 0, 0.001) * Eigen::Scaling(Vec3(4, 4, 1))).matrix();
-    s.objects.push_back(floor);
+    s.objects.push_back(Object::make(
+        "floor", 1, 1, (Eigen::Translation3d(0, 0, 0.001) * Eigen::Scaling(Vec3(4, 4, 1))).matrix(),
+        2, 2));
     Renderer r(s);
     Frame f;
     // fx 4000: a pixel spreads 0.25 mrad, a footprint under 1 mm everywhere in the box
