@@ -25,11 +25,13 @@
 #include "dataset/boxes_json.h"
 #include "dataset/sequence_writer.h"
 #include "core/atomic_file.h"
+#include "core/image_io.h"
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "render/shutter.h"
 #include "sensors/imu.h"
 #include "sensors/imu_io.h"
+#include "render/neural_denoise.h"
 #include "sensors/temporal_reuse.h"
 #include "trajectory/builtin_trajectory.h"
 #include "trajectory/formats.h"
@@ -66,6 +68,8 @@ struct GenerateArgs {
   std::string out = "out";
   bool progress = true;
   bool denoise = true;
+  std::string denoiser = "atrous";  ///< atrous or learned (render/neural_denoise.h)
+  bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
   int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
   bool temporal_set = false;
   double exposure_ms = 0.0;
@@ -321,7 +325,17 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                  {"rgb", a.hdr ? "linear radiance -> cam0 EXR (float32); -> camera response -> "
                                  "clamp -> sRGB 8-bit PNG"
                                : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
-  m["render"]["denoise"] = opt.denoise ? opt.denoise_options.describe() : "off";
+  if (!opt.denoise) {
+    m["render"]["denoise"] = "off";
+  } else if (a.denoiser == "learned") {
+    m["render"]["denoise"] = "learned U-Net (render/neural_denoise.h), weights " +
+                             fs::path(defaultNeuralDenoiserPath()).filename().string();
+  } else {
+    m["render"]["denoise"] = opt.denoise_options.describe();
+  }
+  if (a.save_denoiser_inputs)
+    m["render"]["denoiser_inputs"] =
+        "denoise_in/<t>.exr: what the learned denoiser reads, per frame (render/neural_denoise.h)";
   if (temporalWindow(a) > 1) {
     TemporalReuseOptions t;
     t.window = temporalWindow(a);
@@ -649,13 +663,29 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
     r.add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
   };
   // renders one camera's frame k into f (colour filtered as asked: reuse, then the denoiser)
-  auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f) {
-    if (!r) {
+  // the learned denoiser and the training dump need the colour's layers even without reuse
+  const bool learned = opt.denoise && a.denoiser == "learned";
+  const bool need_layers = has(passes, Pass::Rgb) && (learned || a.save_denoiser_inputs);
+  const NeuralDenoiser* net = learned ? &defaultNeuralDenoiser() : nullptr;
+  auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f,
+                          const std::string& dump_name) {
+    if (!r && !need_layers) {
       renderer.render(lens, exposureOf(k, T_rig), opt, idx, f);
       return;
     }
-    renderReused(k, T_rig, idx, opt, *r, f);
-    if (opt.denoise) denoiseRgb(f, layers, opt.denoise_options);
+    if (r) {
+      renderReused(k, T_rig, idx, opt, *r, f);
+    } else {
+      renderer.render(lens, exposureOf(k, T_rig), opt, idx, f, &layers);
+    }
+    if (a.save_denoiser_inputs)
+      writeExr(dir / dump_name / fmt::format("{:019d}.exr", traj.poses[k].t_ns),
+               denoiserDump(f, layers), denoiserDumpChannels());
+    if (net) {
+      denoiseRgbLearned(f, layers, *net);
+    } else if (opt.denoise) {
+      denoiseRgb(f, layers, opt.denoise_options);
+    }
     if (has(opt.passes, Pass::Shading)) shadingFromRgb(f);  // of the filtered colour
   };
   auto warmUp = [&](size_t k) {  // the frames before k that k's colour reuses
@@ -698,13 +728,13 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
                           previous ? &*previous : nullptr, next ? &*next : nullptr, f);
       };
       warmUp(k);
-      renderColour(k, Pose{}, idx, temporal ? &*reuse : nullptr, frame);
+      renderColour(k, Pose{}, idx, temporal ? &*reuse : nullptr, frame, "denoise_in");
       derive(Pose{}, idx, frame);
       if (respond) shown = response.apply(frame.rgb, opt.seed, idx);
       if (a.stereo > 0) {
         // cam1: every pose of the exposure moved by the baseline; its own random numbers
         const uint32_t idx1 = idx | 0x80000000u;
-        renderColour(k, T_cam0_cam1, idx1, temporal ? &*reuse1 : nullptr, frame1);
+        renderColour(k, T_cam0_cam1, idx1, temporal ? &*reuse1 : nullptr, frame1, "denoise_in1");
         derive(T_cam0_cam1, idx1, frame1);
         if (respond) shown1 = response.apply(frame1.rgb, opt.seed, idx1);
       }
@@ -827,6 +857,15 @@ void registerGenerate(CLI::App& app) {
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered; docs/denoise.md). On by default: it trades a little bias for "
                 "much less noise; --no-denoise keeps the unbiased path-traced colour");
+  cmd->add_option("--denoiser", a->denoiser,
+                  "which denoiser --denoise runs: atrous (edge-avoiding wavelets guided by the "
+                  "noise level, default) or learned (a small U-Net trained on our own renders, "
+                  "data/denoise/unet.bin; docs/denoise.md)")
+      ->check(CLI::IsMember({"atrous", "learned"}));
+  cmd->add_flag("--save-denoiser-inputs", a->save_denoiser_inputs,
+                "also write what the learned denoiser reads for each frame (the colour after "
+                "temporal reuse, its variance, albedos, normal, depth, emission) as "
+                "denoise_in/<t>.exr: training data for 'interiornet denoiser train'");
   cmd->add_option("--temporal", a->temporal,
                   "temporal reuse window N: average each surface point's diffuse light over the "
                   "last N frames that saw it, reprojected exactly through the ground truth (depth, "

@@ -149,21 +149,6 @@ void runGenerate(const TrajectoryGenerateArgs& a) {
               motionTypeName(type), traj.v_mult, traj.w_mult, a.out.c_str());
 }
 
-/// Replaces this process with interiornet-train-style from this binary's folder.
-[[noreturn]] void execTrainStyle(const std::vector<std::string>& args) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path tool = (ec ? fs::path(".") : self.parent_path()) / "interiornet-train-style";
-  std::vector<std::string> owned = {tool.string(), "train-style"};
-  owned.insert(owned.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : owned) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(nullptr);
-  ::execv(tool.c_str(), argv.data());
-  throw InputError(tool.string(), "", fmt::format("cannot run it: {}", std::strerror(errno)));
-}
-
 }  // namespace
 
 void registerTrajectory(CLI::App& app) {
@@ -204,7 +189,8 @@ void registerTrajectory(CLI::App& app) {
       "'interiornet trajectory train-style --help' lists its options)");
   train->prefix_command();
   train->set_help_flag();
-  train->callback([train] { execTrainStyle(train->remaining()); });
+  train->callback(
+      [train] { execCompanion("interiornet-train-style", "train-style", train->remaining()); });
 
   auto* show = trajectory->add_subcommand(
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");

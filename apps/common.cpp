@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -327,6 +328,22 @@ Scene defaultApartment() {
   }
   fs::remove_all(dir);
   return scene;
+}
+
+void execCompanion(const std::string& tool_name, const std::string& subcommand,
+                   const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path tool = (ec ? fs::path(".") : self.parent_path()) / tool_name;
+  std::vector<std::string> owned = {tool.string(), subcommand};
+  owned.insert(owned.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : owned) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  ::execv(tool.c_str(), argv.data());
+  throw InputError(tool.string(), "", fmt::format("cannot run it: {}", std::strerror(errno)));
 }
 
 }  // namespace inet::app

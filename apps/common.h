@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/lens.h"
@@ -143,6 +144,13 @@ void registerImu(CLI::App& app);
 void registerDepthNoise(CLI::App& app);
 void registerEvents(CLI::App& app);
 void registerVary(CLI::App& app);
+void registerDenoiser(CLI::App& app);
+
+/// Replaces this process with the companion executable `tool` from this binary's folder (the
+/// LibTorch tools: interiornet-train-style, interiornet-train-denoiser), as `tool subcommand
+/// args...`. Throws InputError if it cannot be run.
+[[noreturn]] void execCompanion(const std::string& tool, const std::string& subcommand,
+                                const std::vector<std::string>& args);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 void addTrainStyleCommand(CLI::App* trajectory_cmd);
 void addSequenceEvalCommands(CLI::App* eval_cmd);

@@ -24,5 +24,6 @@ int main(int argc, char** argv) {
   inet::app::registerDepthNoise(app);
   inet::app::registerEvents(app);
   inet::app::registerVary(app);
+  inet::app::registerDenoiser(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -458,6 +458,60 @@ TEST(Generate, AutoExposureMetersOneMultiplierPerSequenceToMiddleGrey) {
   EXPECT_NEAR(std::log2(log_average / 0.18), 0.0, 0.5) << log_average << " at scale " << scale;
 }
 
+// The learned denoiser (render/neural_denoise.h) in a sequence, and the training dump it
+// learns from: the dump's reflected colour plus its emission is the unfiltered colour, the
+// network removes most of the pixel-to-pixel noise, and its output does not depend on the
+// thread count.
+TEST(Generate, LearnedDenoiserAndItsTrainingDump) {
+  TempDir dir("gen_learned");
+  const std::string common = kSmall + "--hdr --frames 2 --spp 4 --exposure fixed --passes rgb,depth ";
+  RunResult raw = runInterinet(common + "--no-denoise --save-denoiser-inputs --out " +
+                               (dir / "raw").string());
+  RunResult l1 = runInterinet(common + "--denoiser learned --threads 1 --out " + (dir / "l1").string());
+  RunResult l2 = runInterinet(common + "--denoiser learned --threads 2 --out " + (dir / "l2").string());
+  RunResult bad = runInterinet(common + "--denoiser oidn --out " + (dir / "bad").string());
+  ASSERT_EQ(raw.exit_code, 0) << raw.err;
+  ASSERT_EQ(l1.exit_code, 0) << l1.err;
+  ASSERT_EQ(l2.exit_code, 0) << l2.err;
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--denoiser"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "bad" / "default_room"));
+  const fs::path s = seqDir(dir / "raw");
+  EXPECT_EQ(filesIn(s / "denoise_in", ".exr"), 2u);
+  auto meta = nlohmann::json::parse(readTextFile(seqDir(dir / "l1") / "meta.json"));
+  EXPECT_NE(meta["render"]["denoise"].get<std::string>().find("learned"), std::string::npos);
+  // high-frequency energy: mean |x - mean of its 4 neighbours| over pixels seen in both
+  auto roughness = [](const ImageF& img) {
+    double r = 0, m = 0;
+    for (int y = 1; y + 1 < img.height; ++y)
+      for (int x = 1; x + 1 < img.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const float v = img.at(x, y, c);
+          const float n = 0.25f * (img.at(x - 1, y, c) + img.at(x + 1, y, c) +
+                                   img.at(x, y - 1, c) + img.at(x, y + 1, c));
+          r += std::abs(v - n);
+          m += v;
+        }
+    return r / m;
+  };
+  for (const char* t : {"0000000000000000000", "0000000000040000000"}) {
+    const std::string name = std::string(t) + ".exr";
+    const ImageF exr = readExr(s / "cam0/data" / name, {"R", "G", "B"});
+    const ImageF dump = readExr(s / "denoise_in" / name,
+                                {"R", "G", "B", "emission.R", "emission.G", "emission.B", "Z"});
+    ASSERT_EQ(dump.width, exr.width);
+    for (size_t i = 0; i < exr.pixelCount(); ++i)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(dump.data[7 * i + c] + dump.data[7 * i + 3 + c], exr.data[3 * i + c],
+                    1e-5f * (1.f + exr.data[3 * i + c]));
+    const std::string a = readTextFile(seqDir(dir / "l1") / "cam0/data" / name);
+    EXPECT_EQ(a, readTextFile(seqDir(dir / "l2") / "cam0/data" / name)) << "thread count";
+    const ImageF learned = readExr(seqDir(dir / "l1") / "cam0/data" / name, {"R", "G", "B"});
+    const double r_raw = roughness(exr), r_learned = roughness(learned);
+    EXPECT_LT(r_learned, 0.3 * r_raw) << t;
+  }
+}
+
 struct FileId {
   ino_t inode;
   int64_t mtime_ns;
