@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "core/error.h"
@@ -35,6 +36,14 @@ inline int runCli(CLI::App& app, int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+/// The training record of the LibTorch tools: `record` if given, else <out stem>_record.json
+/// beside the weights file `out`.
+inline std::string recordPath(const std::string& out, const std::string& record) {
+  if (!record.empty()) return record;
+  const std::filesystem::path o(out);
+  return (o.parent_path() / (o.stem().string() + "_record.json")).string();
 }
 
 }  // namespace inet::app

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "render/tonemap.h"
 #include "core/progress.h"
+#include "dataset/asl_writer.h"
 #include "dataset/boxes_json.h"
 #include "dataset/sequence_writer.h"
 #include "core/atomic_file.h"
@@ -679,7 +680,7 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
       renderer.render(lens, exposureOf(k, T_rig), opt, idx, f, &layers);
     }
     if (a.save_denoiser_inputs)
-      writeExr(dir / dump_name / fmt::format("{:019d}.exr", traj.poses[k].t_ns),
+      writeExr(dir / dump_name / (aslStamp(traj.poses[k].t_ns) + ".exr"),
                denoiserDump(f, layers), denoiserDumpChannels());
     if (net) {
       denoiseRgbLearned(f, layers, *net);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "cli_main.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -35,14 +36,9 @@ std::vector<DenoiseTrainPairs> parsePairs(const std::vector<std::string>& list,
 }
 
 void runTrainDenoiser(TrainDenoiserArgs& a) {
-  namespace fs = std::filesystem;
   a.opt.train = parsePairs(a.pairs, "--pairs");
   a.opt.holdout = parsePairs(a.holdout, "--holdout");
-  const std::string record =
-      !a.record.empty() ? a.record
-                        : (fs::path(a.out).parent_path() /
-                           (fs::path(a.out).stem().string() + "_record.json"))
-                              .string();
+  const std::string record = recordPath(a.out, a.record);
   ProgressBar bar(a.opt.steps, "steps", a.progress);
   DenoiseTrainResult r =
       trainNeuralDenoiser(a.opt, [&](int step, int, double) { bar.update(step); });

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "cli_main.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -27,11 +28,7 @@ void runTrainStyle(const TrainStyleArgs& a) {
   namespace fs = std::filesystem;
   if (!fs::is_directory(a.opt.data_dir))
     throw InputError(a.opt.data_dir, "--data", "is not a folder");
-  const std::string record =
-      !a.record.empty() ? a.record
-                        : (fs::path(a.out).parent_path() /
-                           (fs::path(a.out).stem().string() + "_record.json"))
-                              .string();
+  const std::string record = recordPath(a.out, a.record);
   ProgressBar bar(a.opt.epochs, "epochs");
   StyleTrainResult r = trainStyleModel(a.opt, [&](int epoch, int, double) { bar.update(epoch); });
   bar.finish();

@@ -32,6 +32,17 @@ struct Image {
   bool operator==(const Image&) const = default;
 };
 
+/// Channels [first, first + count) of `img`, as an image of their own.
+template <typename T>
+Image<T> channelRange(const Image<T>& img, int first, int count) {
+  INET_CHECK(first >= 0 && count >= 1 && first + count <= img.channels);
+  Image<T> out(img.width, img.height, count);
+  for (size_t i = 0; i < img.pixelCount(); ++i)
+    for (int c = 0; c < count; ++c)
+      out.data[i * count + c] = img.data[i * img.channels + first + c];
+  return out;
+}
+
 using ImageF = Image<float>;
 using ImageU8 = Image<uint8_t>;
 using ImageU16 = Image<uint16_t>;

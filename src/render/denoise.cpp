@@ -432,8 +432,9 @@ void rejectFireflies(const Guide& g, Signal& a) {
   });
 }
 
-ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
-               const ImageF* variance, const DenoiseOptions& opt) {
+std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
+                                  const ImageF& depth, const ImageF* variance,
+                                  const DenoiseOptions& opt, const std::vector<int>& levels) {
   INET_CHECK_MSG(rgb.channels == 3, "denoise: rgb must have 3 channels");
   checkPass(albedo, rgb, 3, "albedo");
   checkPass(normal, rgb, 3, "normal");
@@ -443,29 +444,44 @@ ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, co
                        (variance->channels == 1 || variance->channels == 3),
                    "denoise: variance must be rgb-sized with 1 or 3 channels");
   validateDenoiseOptions(opt, "");
-  if (rgb.empty()) return rgb;
+  INET_CHECK_MSG(std::is_sorted(levels.begin(), levels.end()) && !levels.empty() &&
+                     levels.front() >= 1 && levels.back() <= 10,
+                 "denoiseLevels: levels must be ascending in 1..10");
+  if (rgb.empty()) return std::vector<ImageF>(levels.size(), rgb);
 
   const Guide g = buildGuide(rgb, albedo, normal, depth, opt);
   Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
   if (!variance) estimateVariance(g, a, opt);
   rejectFireflies(g, a);
   Signal b(g.size());
-  for (int it = 0; it < opt.iterations; ++it) {
+  const float eps = opt.albedo_epsilon;
+  auto remodulated = [&](const Signal& s) {
+    ImageF out = rgb;
+    forEachRow(g.height, [&](int y) {
+      for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width;
+           ++i) {
+        if (g.valid[i] == 0.f) continue;
+        out.data[3 * i] = s.r[i] * std::max(g.ar[i], eps);
+        out.data[3 * i + 1] = s.g[i] * std::max(g.ag[i], eps);
+        out.data[3 * i + 2] = s.b[i] * std::max(g.ab[i], eps);
+      }
+    });
+    return out;
+  };
+  std::vector<ImageF> outs;
+  for (int it = 0; it < levels.back(); ++it) {
     atrousLevel(g, a, b, 1 << it, opt);
     std::swap(a, b);
+    for (int l : levels)
+      if (l == it + 1) outs.push_back(remodulated(a));
   }
-  ImageF out = rgb;
-  const float eps = opt.albedo_epsilon;
-  forEachRow(g.height, [&](int y) {
-    for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width;
-         ++i) {
-      if (g.valid[i] == 0.f) continue;
-      out.data[3 * i] = a.r[i] * std::max(g.ar[i], eps);
-      out.data[3 * i + 1] = a.g[i] * std::max(g.ag[i], eps);
-      out.data[3 * i + 2] = a.b[i] * std::max(g.ab[i], eps);
-    }
-  });
-  return out;
+  return outs;
+}
+
+ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
+               const ImageF* variance, const DenoiseOptions& opt) {
+  validateDenoiseOptions(opt, "");
+  return std::move(denoiseLevels(rgb, albedo, normal, depth, variance, opt, {opt.iterations})[0]);
 }
 
 ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b) {

@@ -36,6 +36,7 @@
 // give identical bytes. Never apply it to ground-truth passes (they are exact), and it is off by
 // default in the renderer: it trades noise for bias.
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/frame.h"
@@ -68,6 +69,13 @@ void validateDenoiseOptions(const DenoiseOptions& options, const std::string& wh
 /// TBB; the output does not depend on the thread count.
 ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
                const ImageF* variance, const DenoiseOptions& options);
+
+/// denoise() stopped after each of `levels` (ascending, in 1..10) à-trous levels:
+/// one image per entry, each equal to denoise() with options.iterations = that level (the
+/// levels are computed once; options.iterations is ignored).
+std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
+                                  const ImageF& depth, const ImageF* variance,
+                                  const DenoiseOptions& options, const std::vector<int>& levels);
 
 /// Variance of the mean of two independent half-sample buffers A and B (same spp each), per
 /// channel: ((A - B) / 2)^2, the one-degree-of-freedom unbiased estimate of Var((A + B) / 2).

@@ -55,13 +55,6 @@ ImageF fromChw(const torch::Tensor& t3) {
   return img;
 }
 
-ImageF channels(const ImageF& img, int first, int count) {
-  ImageF s(img.width, img.height, count);
-  for (size_t i = 0; i < img.pixelCount(); ++i)
-    for (int c = 0; c < count; ++c) s.data[i * count + c] = img.data[i * img.channels + first + c];
-  return s;
-}
-
 std::vector<PairFrame> loadPairs(const std::vector<DenoiseTrainPairs>& pairs, float eps) {
   std::vector<PairFrame> out;
   for (const DenoiseTrainPairs& p : pairs) {
@@ -91,7 +84,7 @@ std::vector<PairFrame> loadPairs(const std::vector<DenoiseTrainPairs>& pairs, fl
       std::vector<torch::Tensor> cand;
       for (const ImageF& c : f.candidates) cand.push_back(chw(c));
       pf.candidates = torch::stack(cand);
-      ImageF afp = channels(in, 6, 3), target = channels(ref, 0, 3);
+      ImageF afp = channelRange(in, 6, 3), target = channelRange(ref, 0, 3);
       ImageF mask(in.width, in.height, 1);
       const float inv_m = 1.f / f.scale;
       for (size_t i = 0; i < in.pixelCount(); ++i) {

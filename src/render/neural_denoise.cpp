@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/weights_file.h"
 #include "render/denoise.h"
 
 namespace inet {
@@ -196,16 +197,18 @@ std::vector<ImageF> denoiserCandidates(const ImageF& reflected, const ImageF& va
     return e;
   };
   c.push_back(demodulated(reflected));
-  auto filtered = [&](int iterations, float sigma_color) {
+  // one à-trous run per colour weight, stopped at the levels the candidates need
+  auto filtered = [&](float sigma_color, const std::vector<int>& levels) {
     DenoiseOptions o;
-    o.iterations = iterations;
     o.sigma_color = sigma_color;
     o.albedo_epsilon = eps;
-    return demodulated(denoise(reflected, footprint_albedo, normal, depth, &variance, o));
+    for (const ImageF& f :
+         denoiseLevels(reflected, footprint_albedo, normal, depth, &variance, o, levels))
+      c.push_back(demodulated(f));
   };
-  c.push_back(filtered(3, 2.f));
-  c.push_back(filtered(5, 4.f));
-  for (int iterations : {3, 5, 7}) c.push_back(filtered(iterations, 1e4f));
+  filtered(2.f, {3});
+  filtered(4.f, {5});
+  filtered(1e4f, {3, 5, 7});
   return c;
 }
 
@@ -383,12 +386,7 @@ ImageF denoiserDump(const Frame& frame, const RgbLayers& layers) {
 
 DenoiserInput denoiserFeaturesFromDump(const ImageF& dump, float albedo_epsilon) {
   INET_CHECK(dump.channels == 19);
-  auto slice = [&](int first, int count) {
-    ImageF s(dump.width, dump.height, count);
-    for (size_t i = 0; i < dump.pixelCount(); ++i)
-      for (int c = 0; c < count; ++c) s.data[i * count + c] = dump.data[i * 19 + first + c];
-    return s;
-  };
+  auto slice = [&](int first, int count) { return channelRange(dump, first, count); };
   return denoiserFeatures(slice(0, 3), slice(3, 3), slice(6, 3), slice(9, 3), slice(12, 3),
                           slice(15, 1), albedo_epsilon);
 }
@@ -408,20 +406,7 @@ void saveNeuralDenoiser(const NeuralDenoiser& net, const std::string& path) {
     data.insert(data.end(), c.weight.begin(), c.weight.end());
     data.insert(data.end(), c.bias.begin(), c.bias.end());
   }
-  const std::string text = header.dump();
-  std::string bytes(kMagic, 8);
-  auto put32 = [&](uint32_t v) {
-    for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-  };
-  put32(kFormatVersion);
-  put32(static_cast<uint32_t>(text.size()));
-  bytes += text;
-  for (float f : data) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    put32(u);
-  }
-  writeTextAtomic(path, bytes);
+  writeTextAtomic(path, encodeWeightsFile(std::string(kMagic, 8), kFormatVersion, header.dump(), data));
 }
 
 NeuralDenoiser loadNeuralDenoiser(const std::string& path) {
@@ -432,30 +417,12 @@ NeuralDenoiser loadNeuralDenoiser(const std::string& path) {
 }
 
 NeuralDenoiser parseNeuralDenoiser(const std::string& bytes, const std::string& path) {
-  size_t pos = 0;
-  auto need = [&](size_t n, const std::string& what) {
-    if (n > bytes.size() - pos) throw InputError(path, what, "file is truncated");
-  };
-  auto get32 = [&](const std::string& what) {
-    need(4, what);
-    uint32_t v = 0;
-    for (int i = 0; i < 4; ++i)
-      v |= static_cast<uint32_t>(static_cast<uint8_t>(bytes[pos + i])) << (8 * i);
-    pos += 4;
-    return v;
-  };
-  need(8, "magic");
-  if (bytes.compare(0, 8, kMagic, 8) != 0)
-    throw InputError(path, "magic", "not a denoiser weights file (expected INETDNSR)");
-  pos = 8;
-  if (const uint32_t v = get32("version"); v != kFormatVersion)
-    throw InputError(path, "version", "format version " + std::to_string(v) + ", expected 1");
-  const uint32_t n = get32("header");
-  need(n, "header");
+  WeightsFileReader file(bytes, path, std::string(kMagic, 8), kFormatVersion,
+                         "a denoiser weights file");
   NeuralDenoiser net;
   nlohmann::json header;
   try {
-    header = nlohmann::json::parse(bytes.substr(pos, n));
+    header = nlohmann::json::parse(file.header());
     const auto& c = header.at("config");
     const auto& channels = c.at("channels");
     if (!channels.is_array() || channels.size() > 6)
@@ -478,9 +445,8 @@ NeuralDenoiser parseNeuralDenoiser(const std::string& bytes, const std::string& 
     throw InputError(path, "header", e.what());
   }
   net.config.validate(path);
-  pos += n;
   net.convs = NeuralDenoiser::shapes(net.config);
-  const auto& spec = header.contains("tensors") ? header["tensors"] : nlohmann::json::array();
+  const nlohmann::json& spec = header["tensors"];  // null when absent: fails the check below
   if (!spec.is_array() || spec.size() != 2 * net.convs.size())
     throw InputError(path, "tensors", "expected " + std::to_string(2 * net.convs.size()) +
                                           " tensors for the config");
@@ -494,10 +460,7 @@ NeuralDenoiser parseNeuralDenoiser(const std::string& bytes, const std::string& 
     if (!same)
       throw InputError(path, "tensors", "expected " + name + " of shape " +
                                             nlohmann::json(shape).dump());
-    need(4 * count, name);
-    v.resize(count);
-    std::memcpy(v.data(), bytes.data() + pos, 4 * count);  // little-endian hosts only (x86, arm)
-    pos += 4 * count;
+    v = file.readFloats(count, name);
     for (float f : v)
       if (!std::isfinite(f)) throw InputError(path, name, "holds a value that is not finite");
   };
@@ -512,7 +475,7 @@ NeuralDenoiser parseNeuralDenoiser(const std::string& bytes, const std::string& 
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path, "tensors", e.what());
   }
-  if (pos != bytes.size()) throw InputError(path, "tensors", "trailing bytes after the weights");
+  file.finish();
   return net;
 }
 

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/weights_file.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "trajectory/formats.h"
@@ -191,49 +192,19 @@ void saveStyleModel(const StyleModel& model, const std::string& path) {
     for (Eigen::Index r = 0; r < t.rows(); ++r)
       for (Eigen::Index c = 0; c < t.cols(); ++c) data.push_back(static_cast<float>(t(r, c)));
   });
-  const std::string text = header.dump();
-  std::string bytes(kMagic, 8);
-  auto put32 = [&](uint32_t v) {
-    for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-  };
-  put32(kFormatVersion);
-  put32(static_cast<uint32_t>(text.size()));
-  bytes += text;
-  for (float f : data) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    put32(u);
-  }
-  writeTextAtomic(path, bytes);
+  writeTextAtomic(path, encodeWeightsFile(std::string(kMagic, 8), kFormatVersion, header.dump(), data));
 }
 
 StyleModel loadStyleModel(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the style model weights");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  size_t pos = 0;
-  auto need = [&](size_t n, const char* what) {
-    if (pos + n > bytes.size()) throw InputError(path, what, "file is truncated");
-  };
-  auto get32 = [&](const char* what) {
-    need(4, what);
-    uint32_t v = 0;
-    for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(static_cast<uint8_t>(bytes[pos + i])) << (8 * i);
-    pos += 4;
-    return v;
-  };
-  need(8, "magic");
-  if (bytes.compare(0, 8, kMagic, 8) != 0)
-    throw InputError(path, "magic", "not a style model weights file (expected INETSTYL)");
-  pos = 8;
-  if (uint32_t v = get32("version"); v != kFormatVersion)
-    throw InputError(path, "version", "format version " + std::to_string(v) + ", expected 1");
-  const uint32_t n = get32("header");
-  need(n, "header");
+  WeightsFileReader file(std::move(bytes), path, std::string(kMagic, 8), kFormatVersion,
+                         "a style model weights file");
   nlohmann::json header;
   StyleModel m;
   try {
-    header = nlohmann::json::parse(bytes.substr(pos, n));
+    header = nlohmann::json::parse(file.header());
     m = StyleModel::random(configFromJson(header.at("config")), 0);
     const auto scale = header.at("scale").get<std::vector<double>>();
     if (scale.size() != 6) throw InputError(path, "scale", "needs 6 values");
@@ -241,7 +212,6 @@ StyleModel loadStyleModel(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path, "header", e.what());
   }
-  pos += n;
   size_t index = 0;
   m.forEachTensor([&](const std::string& name, Eigen::MatrixXd& t) {
     const auto& spec = header["tensors"];
@@ -251,15 +221,11 @@ StyleModel loadStyleModel(const std::string& path) {
                                             " of " + std::to_string(t.rows()) + " x " +
                                             std::to_string(t.cols()));
     ++index;
+    const std::vector<float> v = file.readFloats(static_cast<size_t>(t.size()), name);
     for (Eigen::Index r = 0; r < t.rows(); ++r)
-      for (Eigen::Index c = 0; c < t.cols(); ++c) {
-        const uint32_t u = get32(name.c_str());
-        float f;
-        std::memcpy(&f, &u, 4);
-        t(r, c) = f;
-      }
+      for (Eigen::Index c = 0; c < t.cols(); ++c) t(r, c) = v[r * t.cols() + c];
   });
-  if (pos != bytes.size()) throw InputError(path, "tensors", "trailing bytes after the weights");
+  file.finish();
   return m;
 }
 
