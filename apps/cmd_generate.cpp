@@ -69,6 +69,7 @@ struct GenerateArgs {
   std::string out = "out";
   bool progress = true;
   bool denoise = true;
+  bool light_cache = true;
   std::string denoiser = "atrous";  ///< atrous or learned (render/neural_denoise.h)
   bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
   int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
@@ -326,6 +327,7 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                  {"rgb", a.hdr ? "linear radiance -> cam0 EXR (float32); -> camera response -> "
                                  "clamp -> sRGB 8-bit PNG"
                                : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
+  if (opt.light_cache) m["render"]["light_pick"] = "visibility-aware (render/light_cache.h)";
   if (!opt.denoise) {
     m["render"]["denoise"] = "off";
   } else if (a.denoiser == "learned") {
@@ -477,6 +479,7 @@ void runGenerate(const GenerateArgs& a) {
   opt.seed = a.seed;
   opt.passes = renderPassesFor(passes, lens_type, want.boxes);
   opt.denoise = a.denoise;
+  opt.light_cache = a.light_cache;
   // every configuration's scene before the first file: the same trajectory goes through each
   for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
   stopIfSignalled("before the first frame");
@@ -858,6 +861,11 @@ void registerGenerate(CLI::App& app) {
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered; docs/denoise.md). On by default: it trades a little bias for "
                 "much less noise; --no-denoise keeps the unbiased path-traced colour");
+  cmd->add_flag("--light-cache,!--no-light-cache", a->light_cache,
+                "visibility-aware light picks: a sparse training pass per frame learns, region "
+                "by region, what share of each light's shadow rays gets through (the sun behind "
+                "walls), and next-event estimation picks lights by that. Unbiased; on by "
+                "default, --no-light-cache gives the plain pick (docs/rendering.md)");
   cmd->add_option("--denoiser", a->denoiser,
                   "which denoiser --denoise runs: atrous (edge-avoiding wavelets guided by the "
                   "noise level, default) or learned (a small U-Net trained on our own renders, "

@@ -27,6 +27,7 @@ struct RenderArgs {
   std::string pass = "rgb";
   LensArgs lens;
   bool denoise = false;
+  bool light_cache = false;
   ResponseArgs response;
   std::string camera_end;
   double exposure_ms = 0.0;
@@ -80,6 +81,7 @@ void runRender(const RenderArgs& a) {
   opt.seed = a.seed;
   opt.passes = pass;
   opt.denoise = a.denoise;
+  opt.light_cache = a.light_cache;
   Frame f;
   CameraExposure exposure = CameraExposure::fixed(cam.T_world_camera);
   if (!a.camera_end.empty()) {
@@ -143,6 +145,9 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--denoise", a->denoise,
                 "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "
                 "(docs/denoise.md); trades a little bias for much less noise; off by default");
+  cmd->add_flag("--light-cache", a->light_cache,
+                "visibility-aware light picks (a sparse training pass learns what share of each "
+                "light's shadow rays gets through, region by region; unbiased; docs/rendering.md)");
   cmd->add_option("--camera-end", a->camera_end,
                   "camera.json of the pose when the exposure ends (motion blur); the pose of "
                   "--camera is where it starts");

@@ -22,9 +22,11 @@ if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang libclang-rt-14-dev)
 fi
 # `setup.sh peers` also installs the peer renderer the benchmarks and the glTF export's test
-# compare against (Blender with Cycles; bench/cycles_gltf.py).
+# compare against (Blender with Cycles; bench/cycles_gltf.py), and NumPy, which the bench
+# scripts run inside Blender read images with (a Recommends of blender, so not pulled in by
+# --no-install-recommends).
 if [ "${1:-}" = "peers" ]; then
-  PACKAGES+=(blender)
+  PACKAGES+=(blender python3-numpy)
 fi
 
 missing=()

@@ -28,6 +28,9 @@ struct RenderOptions {
   PassMask passes = kRenderPasses;
   std::string integrator = "path";
   bool denoise = false;  ///< edge-aware denoising of the RGB pass (never of ground truth)
+  /// Visibility-aware light picks (light_cache.h): a sparse training pass per frame learns
+  /// what share of each light's shadow rays gets through, region by region. Unbiased.
+  bool light_cache = false;
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7
   /// and sigma_color 1-8 at 32 spp: 3 and 2 gave the lowest RMSE, 0.00465 vs 0.00565 for the
   /// filter's generic defaults).

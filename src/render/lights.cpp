@@ -118,9 +118,21 @@ float SceneLights::importance(size_t k, const Vec3f& p) const {
   return luminance(a.rgb) * falloff / std::max(dist2, 1e-4f);
 }
 
-SceneLights::PickPoint SceneLights::pickAt(const Vec3f& p) const {
-  PickPoint at{p, 0.f};
-  for (size_t k = 0; k < pickCount(); ++k) at.total += importance(k, p);
+SceneLights::PickPoint SceneLights::pickAt(const Vec3f& p, const LightCache* cache) const {
+  PickPoint at;
+  at.p = p;
+  const size_t n = pickCount();
+  at.cached = static_cast<int>(std::min<size_t>(n, PickPoint::kCached));
+  const float* factors = cache ? cache->factors(p) : nullptr;
+  for (size_t k = 0; k < n; ++k) {
+    float w = importance(k, p);
+    const int slot = cacheSlot(k);
+    if (slot < at.cached) {
+      if (factors) w *= factors[slot];
+      at.importance[slot] = w;
+    }
+    at.total += w;
+  }
   return at;
 }
 
@@ -141,12 +153,13 @@ bool SceneLights::sample(const PickPoint& at, float u_pick, const Eigen::Vector2
   size_t k = 0;
   float w = 0.f;
   for (float acc = 0.f; k < n; ++k) {
-    acc += (w = importance(k, p));
+    acc += (w = importance(k, at));
     if (target < acc) break;
   }
   if (k == n) k = n - 1;  // u_pick rounding up to the total
-  while (w == 0.f && k > 0) w = importance(--k, p);  // never a light that cannot light p
+  while (w == 0.f && k > 0) w = importance(--k, at);  // never a light that cannot light p
   const float pmf = w / at.total;
+  out.pick = static_cast<int>(k);
   if (k >= groups_.size()) {
     if (!sampleAnalytic(analytic_[k - groups_.size()], p, u, out)) return false;
     out.pdf *= pmf;
@@ -193,7 +206,16 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   if (a.type == LightType::Sky) {
     out.dist = std::numeric_limits<float>::infinity();
     out.delta = false;
-    const float portal_w = portals_.empty() ? 0.f : portalWeight(p);
+    // the portals' weights at p, kept (up to kKeptPortals) for the pick below: the same
+    // values, summed in the same order as portalWeight
+    constexpr size_t kKeptPortals = 64;
+    float kept[kKeptPortals];
+    float portal_w = 0.f;
+    for (size_t i = 0; i < portals_.size(); ++i) {
+      const float w = portalPick(i, p);
+      if (i < kKeptPortals) kept[i] = w;
+      portal_w += w;
+    }
     if (!(portal_w > 0.f)) return sampleOwnSky(a, u, out.wi, out.radiance, out.pdf);
     // the mixture of the sky's own table and the portals (see lights.h)
     const float ux = u.x();
@@ -203,7 +225,7 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
       size_t i = 0;
       float acc = 0.f, w = 0.f;
       for (; i < portals_.size(); ++i) {
-        acc += (w = portalPick(i, p));
+        acc += (w = i < kKeptPortals ? kept[i] : portalPick(i, p));
         if (target < acc) break;
       }
       if (i == portals_.size()) i = portals_.size() - 1;
@@ -259,7 +281,7 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
 float SceneLights::trianglePdf(size_t i, const PickPoint& at, float dist, float cos_light) const {
   const int k = group_of_[i];
   if (cos_light <= 0.f || k < 0 || !(at.total > 0.f)) return 0.f;
-  const float pick = importance(static_cast<size_t>(k), at.p) / at.total;
+  const float pick = importance(static_cast<size_t>(k), at) / at.total;
   return pick * triangle_in_group_[i] / triangles_[i].area * dist * dist / cos_light;
 }
 
@@ -268,7 +290,9 @@ Vec3f SceneLights::environmentRadiance(const Vec3f& d, const PickPoint* at, floa
   pdf = 0.f;
   const float total = at ? at->total : 0.f;
   // the pick probability of analytic light k at p (0 when no receiver is given)
-  auto pmf = [&](size_t k) { return total > 0.f ? env_importance_[k] / total : 0.f; };
+  auto pmf = [&](size_t k) {
+    return total > 0.f ? importance(groups_.size() + k, *at) / total : 0.f;
+  };
   for (size_t k : environment_) {  // not every analytic light: this runs for every escaped ray
     const Analytic& a = analytic_[k];
     if (a.type == LightType::Sky && !portals_.empty()) {

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <vector>
 
+#include "render/light_cache.h"
 #include "render/sky.h"
 #include "scene/scene.h"
 
@@ -64,6 +65,7 @@ struct LightSample {
   Vec3f radiance;    ///< incident radiance (area, sun) or intensity / dist^2 (point, spot)
   float pdf = 0.f;   ///< pick probability x solid-angle pdf (pick probability alone if delta)
   bool delta = false;
+  int pick = -1;     ///< the pick entry chosen (SceneLights::cacheSlot maps it for LightCache)
 };
 
 class SceneLights {
@@ -83,8 +85,24 @@ class SceneLights {
   struct PickPoint {
     Vec3f p = Vec3f::Zero();
     float total = 0.f;
+    /// The importances at p of the pick entries whose cacheSlot is below `cached`, by slot, as
+    /// pickAt summed them (times their LightCache factor when it had a cache): `sample` and
+    /// the MIS pdfs read them instead of evaluating each light again.
+    static constexpr int kCached = LightCache::kLights;
+    int cached = 0;
+    float importance[kCached];
   };
-  PickPoint pickAt(const Vec3f& p) const;
+  /// `cache`, when given, weighs each light's estimate by the share of it that gets through
+  /// around p (light_cache.h); the pdfs of `sample`, `trianglePdf` and `environmentRadiance`
+  /// follow from the pick point, so they agree.
+  PickPoint pickAt(const Vec3f& p, const LightCache* cache = nullptr) const;
+  /// Where LightCache and PickPoint keep pick entry k: the analytic lights (suns, skies, lamps'
+  /// point and spot lights) first, as they are few and the sun is the one whose estimate is
+  /// most often wrong indoors, then the emissive objects.
+  int cacheSlot(size_t k) const {
+    return k >= groups_.size() ? static_cast<int>(k - groups_.size())
+                               : static_cast<int>(analytic_.size() + k);
+  }
 
   /// Samples one light for a receiver; u_pick picks the light, u the point on it.
   /// Returns false when the sample carries nothing (back side, outside a spot cone or range).
@@ -145,6 +163,11 @@ class SceneLights {
   float mixturePdf(const Analytic& a, const Vec3f& p, const Vec3f& d) const;
   /// Unoccluded-irradiance estimate of pick entry k (groups, then analytic) at p.
   float importance(size_t k, const Vec3f& p) const;
+  /// The same at a pick point (with its LightCache factor), from its cache where it holds k.
+  float importance(size_t k, const PickPoint& at) const {
+    const int slot = cacheSlot(k);
+    return slot < at.cached ? at.importance[slot] : importance(k, at.p);
+  }
 
   std::vector<EmissiveTriangle> triangles_;
   std::vector<Group> groups_;

@@ -130,11 +130,13 @@ TEST(AutoLights, NoLightInsideAClosedWardrobe) {
   s.objects.push_back(Object::make("wardrobe", 1, 0, Mat4::Identity(), id("cabinet"), 2));
   const AutoLightReport r = addAutoLights(s);
   EXPECT_EQ(r.spaces, 1u);
-  for (const Object& o : s.objects)
-    if (o.nyu40 == id("lamp"))
+  for (const Object& o : s.objects) {
+    if (o.nyu40 == id("lamp")) {
       EXPECT_FALSE(o.T_world_object(0, 3) < 1.4 && o.T_world_object(1, 3) < 1.4 &&
                    o.T_world_object(2, 3) < 2.2)
           << "a panel inside the wardrobe";
+    }
+  }
 }
 
 TEST(AutoLights, LampObjectsGlowInsteadOfPanels) {
