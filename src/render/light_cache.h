@@ -27,7 +27,7 @@ namespace inet {
 
 class LightCache {
  public:
-  /// Pick entries the cache follows (the first ones of SceneLights' pick order; the rest keep
+  /// Lights the cache follows, by SceneLights::cacheSlot (analytic lights first; the rest keep
   /// their plain estimate): as many as a pick point caches.
   static constexpr int kLights = 16;
   /// Least factor a light's estimate is weighed by: a light whose every training shadow ray was

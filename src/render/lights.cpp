@@ -206,16 +206,10 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   if (a.type == LightType::Sky) {
     out.dist = std::numeric_limits<float>::infinity();
     out.delta = false;
-    // the portals' weights at p, kept (up to kKeptPortals) for the pick below: the same
-    // values, summed in the same order as portalWeight
+    // the portals' weights at p, kept (up to kKeptPortals) for the pick below
     constexpr size_t kKeptPortals = 64;
     float kept[kKeptPortals];
-    float portal_w = 0.f;
-    for (size_t i = 0; i < portals_.size(); ++i) {
-      const float w = portalPick(i, p);
-      if (i < kKeptPortals) kept[i] = w;
-      portal_w += w;
-    }
+    const float portal_w = portals_.empty() ? 0.f : portalWeight(p, kept, kKeptPortals);
     if (!(portal_w > 0.f)) return sampleOwnSky(a, u, out.wi, out.radiance, out.pdf);
     // the mixture of the sky's own table and the portals (see lights.h)
     const float ux = u.x();
@@ -347,9 +341,13 @@ float SceneLights::portalPick(size_t i, const Vec3f& p) const {
   return t.area * cos / std::max(d2, t.area);
 }
 
-float SceneLights::portalWeight(const Vec3f& p) const {
+float SceneLights::portalWeight(const Vec3f& p, float* kept, size_t kept_count) const {
   float w = 0.f;
-  for (size_t i = 0; i < portals_.size(); ++i) w += portalPick(i, p);
+  for (size_t i = 0; i < portals_.size(); ++i) {
+    const float wi = portalPick(i, p);
+    if (i < kept_count) kept[i] = wi;
+    w += wi;
+  }
   return w;
 }
 

@@ -154,8 +154,9 @@ class SceneLights {
   /// A sky's own radiance and solid-angle pdf (its table, or uniform) along d.
   Vec3f skyRadiance(const Analytic& a, const Vec3f& d) const;
   float ownSkyPdf(const Analytic& a, const Vec3f& d) const;
-  /// Sum of the portals' pick weights at p (0: no portal faces p).
-  float portalWeight(const Vec3f& p) const;
+  /// Sum of the portals' pick weights at p (0: no portal faces p); the first `kept_count`
+  /// weights are also written to `kept`, when given.
+  float portalWeight(const Vec3f& p, float* kept = nullptr, size_t kept_count = 0) const;
   float portalPick(size_t i, const Vec3f& p) const;
   /// p_portal(d | p) given the total weight w at p (> 0).
   float portalPdf(const Vec3f& p, const Vec3f& d, float w) const;

@@ -15,6 +15,7 @@
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "scene/primitives.h"
+#include "emissive_quad.h"
 
 namespace inet {
 namespace {
@@ -73,16 +74,7 @@ TEST(LightCache, CachedPicksShiftToWhatGetsThroughWithConsistentPdfs) {
   sky.type = LightType::Sky;
   sky.intensity = 30.f;
   s.lights = {lamp, sun, sky};
-  EmissiveTriangle a, b;
-  a.p0 = Vec3f(2, 2, 2.7f), a.e1 = Vec3f(0.3f, 0, 0), a.e2 = Vec3f(0, 0.3f, 0);
-  b.p0 = Vec3f(2.3f, 2.3f, 2.7f), b.e1 = Vec3f(-0.3f, 0, 0), b.e2 = Vec3f(0, -0.3f, 0);
-  for (EmissiveTriangle* t : {&a, &b}) {
-    t->area = 0.045f;
-    t->normal = Vec3f(0, 0, -1);
-    t->radiance = Vec3f::Constant(20.f);
-    t->group = 0;
-  }
-  const SceneLights lights(s, {a, b});
+  const SceneLights lights(s, test::emissiveQuad(0));
   ASSERT_EQ(lights.pickCount(), 4u);  // the quad, then lamp, sun, sky
   const std::vector<Vec3f> receivers = {Vec3f(1.2f, 1.1f, 0.3f), Vec3f(2.1f, 2.2f, 1.0f)};
   LightCache cache;
@@ -113,9 +105,7 @@ TEST(LightCache, CachedPicksShiftToWhatGetsThroughWithConsistentPdfs) {
         lights.environmentRadiance(ls.wi, &cached, pdf);
         ++skies;
       } else {
-        const float t = (2.7f - p.z()) / ls.wi.z();
-        const Vec3f hit = p + t * ls.wi;
-        const size_t tri = (hit.x() - 2.f) + (hit.y() - 2.f) < 0.3f ? 0 : 1;
+        const size_t tri = test::emissiveQuadTriangle(p, ls.wi);
         pdf = lights.trianglePdf(tri, cached, ls.dist, ls.wi.z());  // normal . (-wi)
         ++triangles;
       }

@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "render/sky.h"
 #include "scene/primitives.h"
+#include "emissive_quad.h"
 
 namespace inet {
 namespace {
@@ -292,16 +293,7 @@ TEST(LightPick, NearLightsWinNearbyAndPdfsAgreeWithSample) {
   sky.intensity = 5.f;
   s.lights = {spot, sun, sky};
   // one emissive quad (two triangles) of radiance 20 at z = 2.7, facing down
-  EmissiveTriangle a, b;
-  a.p0 = Vec3f(2, 2, 2.7f), a.e1 = Vec3f(0.3f, 0, 0), a.e2 = Vec3f(0, 0.3f, 0);
-  b.p0 = Vec3f(2.3f, 2.3f, 2.7f), b.e1 = Vec3f(-0.3f, 0, 0), b.e2 = Vec3f(0, -0.3f, 0);
-  for (EmissiveTriangle* t : {&a, &b}) {
-    t->area = 0.045f;
-    t->normal = Vec3f(0, 0, -1);
-    t->radiance = Vec3f::Constant(20.f);
-    t->group = 7;
-  }
-  const SceneLights lights(s, {a, b});
+  const SceneLights lights(s, test::emissiveQuad(7));
   ASSERT_EQ(lights.pickCount(), 4u);  // the quad, spot, sun, sky
   // 10 cm under the spot the spot is picked most of the time (a global pick by power would give
   // its 8 W a chance of 1e-5 next to the sun's 350 W/m^2 over the scene); outside its cone never
@@ -327,9 +319,7 @@ TEST(LightPick, NearLightsWinNearbyAndPdfsAgreeWithSample) {
         EXPECT_TRUE(L.isApprox(ls.radiance, 1e-5f));
         ++skies;
       } else {
-        // which triangle: the one the direction crosses at z = 2.7
-        const Vec3f q = p + ls.wi * ls.dist;
-        const size_t t = (q.x() - 2.f) + (q.y() - 2.f) < 0.3f ? 0 : 1;
+        const size_t t = test::emissiveQuadTriangle(p, ls.wi);
         pdf = lights.trianglePdf(t, at, ls.dist, ls.wi.z());  // -normal . wi
         ++triangles;
       }
