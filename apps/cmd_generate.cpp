@@ -70,6 +70,7 @@ struct GenerateArgs {
   bool progress = true;
   bool denoise = true;
   bool light_cache = true;
+  bool sun_photons = true;
   std::string denoiser = "atrous";  ///< atrous or learned (render/neural_denoise.h)
   bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
   int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
@@ -328,6 +329,9 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
                                  "clamp -> sRGB 8-bit PNG"
                                : "linear radiance -> camera response -> clamp -> sRGB 8-bit"}};
   if (opt.light_cache) m["render"]["light_pick"] = "visibility-aware (render/light_cache.h)";
+  if (opt.sun_photons)
+    m["render"]["sun_photons"] = "sunlight through panes connected by way of the surfaces it "
+                                 "lands on (render/path_tracer.cpp, SunPhotons)";
   if (!opt.denoise) {
     m["render"]["denoise"] = "off";
   } else if (a.denoiser == "learned") {
@@ -480,6 +484,7 @@ void runGenerate(const GenerateArgs& a) {
   opt.passes = renderPassesFor(passes, lens_type, want.boxes);
   opt.denoise = a.denoise;
   opt.light_cache = a.light_cache;
+  opt.sun_photons = a.sun_photons;
   // every configuration's scene before the first file: the same trajectory goes through each
   for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
   stopIfSignalled("before the first frame");
@@ -866,6 +871,12 @@ void registerGenerate(CLI::App& app) {
                 "by region, what share of each light's shadow rays gets through (the sun behind "
                 "walls), and next-event estimation picks lights by that. Unbiased; on by "
                 "default, --no-light-cache gives the plain pick (docs/rendering.md)");
+  cmd->add_flag("--sun-photons,!--no-sun-photons", a->sun_photons,
+                "sun photons: each frame traces photons from the sun through the window panes, "
+                "and every path vertex also connects to a sunlit point they found, so the light "
+                "the sun patch on the floor throws onto walls and ceilings is found by a shadow "
+                "ray instead of by chance. Unbiased (MIS); on by default, a no-op without a sun "
+                "or panes (docs/rendering.md)");
   cmd->add_option("--denoiser", a->denoiser,
                   "which denoiser --denoise runs: atrous (edge-avoiding wavelets guided by the "
                   "noise level, default) or learned (a small U-Net trained on our own renders, "

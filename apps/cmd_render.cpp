@@ -28,6 +28,7 @@ struct RenderArgs {
   LensArgs lens;
   bool denoise = false;
   bool light_cache = false;
+  bool sun_photons = false;
   ResponseArgs response;
   std::string camera_end;
   double exposure_ms = 0.0;
@@ -82,6 +83,7 @@ void runRender(const RenderArgs& a) {
   opt.passes = pass;
   opt.denoise = a.denoise;
   opt.light_cache = a.light_cache;
+  opt.sun_photons = a.sun_photons;
   Frame f;
   CameraExposure exposure = CameraExposure::fixed(cam.T_world_camera);
   if (!a.camera_end.empty()) {
@@ -148,6 +150,10 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--light-cache", a->light_cache,
                 "visibility-aware light picks (a sparse training pass learns what share of each "
                 "light's shadow rays gets through, region by region; unbiased; docs/rendering.md)");
+  cmd->add_flag("--sun-photons", a->sun_photons,
+                "sunlight through windows by way of the surfaces it lands on: photons from the "
+                "sun through the panes, each path vertex connected to one (unbiased; "
+                "docs/rendering.md)");
   cmd->add_option("--camera-end", a->camera_end,
                   "camera.json of the pose when the exposure ends (motion blur); the pose of "
                   "--camera is where it starts");

@@ -31,6 +31,11 @@ struct RenderOptions {
   /// Visibility-aware light picks (light_cache.h): a sparse training pass per frame learns
   /// what share of each light's shadow rays gets through, region by region. Unbiased.
   bool light_cache = false;
+  /// Sunlight through windows by way of the surfaces it lands on (path_tracer.cpp, "sun
+  /// photons"): each frame traces photons from the sun through the window panes, and every
+  /// path vertex also connects to one of the sunlit points they found, weighed by MIS against
+  /// finding that point by BSDF sampling. Unbiased; a no-op without a sun or panes.
+  bool sun_photons = false;
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7
   /// and sigma_color 1-8 at 32 spp: 3 and 2 gave the lowest RMSE, 0.00465 vs 0.00565 for the
   /// filter's generic defaults).

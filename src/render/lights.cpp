@@ -241,14 +241,10 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
     return out.pdf > 0.f && out.radiance.maxCoeff() > 0.f;
   }
   if (a.type == LightType::Sun) {
-    // uniform direction inside the cone of the sun's disk, around -direction
-    float cos_t = 1.f - u.x() * a.one_minus_cos_max;
-    float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
-    float phi = 2.f * kPi * u.y();
-    const Vec3f axis = -a.direction;
-    const Frame3 f = Frame3::fromNormal(axis);
-    out.wi =
-        (f.s * (sin_t * std::cos(phi)) + f.t * (sin_t * std::sin(phi)) + axis * cos_t).normalized();
+    SunView sun;
+    sun.to_sun = -a.direction;
+    sun.one_minus_cos_max = a.one_minus_cos_max;
+    out.wi = sun.direction(u);
     out.dist = std::numeric_limits<float>::infinity();
     out.radiance = a.rgb * a.radiance_scale;
     out.pdf = 1.f / (2.f * kPi * a.one_minus_cos_max);
@@ -270,6 +266,30 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
   out.pdf = 1.f;
   out.delta = true;
   return true;
+}
+
+Vec3f SceneLights::SunView::direction(const Eigen::Vector2f& u) const {
+  // uniform inside the cone of the disk, around to_sun
+  const float cos_t = 1.f - u.x() * one_minus_cos_max;
+  const float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
+  const float phi = 2.f * kPi * u.y();
+  const Frame3 f = Frame3::fromNormal(to_sun);
+  return (f.s * (sin_t * std::cos(phi)) + f.t * (sin_t * std::sin(phi)) + to_sun * cos_t)
+      .normalized();
+}
+
+std::optional<SceneLights::SunView> SceneLights::firstSun() const {
+  for (size_t i = 0; i < analytic_.size(); ++i) {
+    const Analytic& a = analytic_[i];
+    if (a.type != LightType::Sun) continue;
+    SunView v;
+    v.pick = groups_.size() + i;
+    v.to_sun = -a.direction;
+    v.one_minus_cos_max = a.one_minus_cos_max;
+    v.radiance = a.rgb * a.radiance_scale;
+    return v;
+  }
+  return std::nullopt;
 }
 
 float SceneLights::trianglePdf(size_t i, const PickPoint& at, float dist, float cos_light) const {

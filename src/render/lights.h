@@ -28,6 +28,7 @@
 // their `pdf` is the pick probability alone and `delta` is set, so the integrator skips MIS.
 #include <Eigen/Core>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "render/light_cache.h"
@@ -119,8 +120,27 @@ class SceneLights {
   /// Probability that `sample` for a receiver at p picks light `k` (emissive objects first,
   /// then the analytic lights in scene order, those that are on), for tests.
   float pickProbability(const Vec3f& p, size_t k) const;
+  /// The same at a pick point (with its LightCache factors, when it had a cache).
+  float pickProbability(const PickPoint& at, size_t k) const {
+    return at.total > 0.f ? importance(k, at) / at.total : 0.f;
+  }
   size_t pickCount() const { return groups_.size() + analytic_.size(); }
   size_t portalCount() const { return portals_.size(); }
+  const PortalTriangle& portal(size_t i) const { return portals_[i]; }
+
+  /// A sun as `sample` sees it: its pick entry, the unit direction toward it, the cone of its
+  /// disk (solid angle 2 pi one_minus_cos_max) and its radiance.
+  struct SunView {
+    size_t pick = 0;
+    Vec3f to_sun = Vec3f::UnitZ();
+    float one_minus_cos_max = 0.f;
+    Vec3f radiance = Vec3f::Zero();
+    float solidAngle() const { return 2.f * 3.14159265358979323846f * one_minus_cos_max; }
+    /// A uniform direction toward the disk for u in [0,1)^2 (what `sample` draws).
+    Vec3f direction(const Eigen::Vector2f& u) const;
+  };
+  /// The first sun that is on, if any.
+  std::optional<SunView> firstSun() const;
   /// The solid-angle pdf with which a sky's sample for a receiver at p chooses direction d (the
   /// mixture above, without the light pick), for tests.
   float skyPdf(size_t analytic_index, const Vec3f& p, const Vec3f& d) const;

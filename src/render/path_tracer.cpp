@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -66,11 +67,55 @@ float offsetScale(const Vec3f& p) {
   return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff());
 }
 
-/// The light cache (light_cache.h) in a call of `radiance`: the one light picks are weighed
-/// by, or the one this path's shadow rays train (at most one of the two).
+/// A sunlit point that a sun photon found (SunPhotons).
+struct SunPhoton {
+  Vec3f p;           ///< on the surface
+  Vec3f to_sun;      ///< unit direction the photon came from
+  Vec3f flux;        ///< what it carries: L_sun x sun solid angle x W x (pane cosines) x panes' T
+  float cos_g = 0.f; ///< |ng . to_sun|
+  float sun_pick = 0.f;  ///< probability that the light pick at p (as a path vertex lit from
+                         ///< the sun's side makes it) chooses the sun
+  SurfacePoint sp;   ///< the surface there (sp.ng: geometric normal)
+};
+
+/// Sun photons: sunlight through windows by way of the surfaces it lands on. Indoors most light
+/// is sunlight bounced off a bright patch on the floor; a path finds that patch only when its
+/// BSDF sample happens to point at it, a few percent of directions from a wall, so the walls
+/// fill with low-frequency blotches that the denoiser keeps. Each frame first traces photons
+/// from the sun into the building: a direction in the sun's disk, a window pane triangle by its
+/// area projected toward the sun (total W), a uniform point on it; the sun must reach that point
+/// with no other pane in the way (else an outer pane's photon carries the light), and the photon
+/// goes on through the panes to the first other surface, y. Every non-delta path vertex x then
+/// connects to one photon picked uniformly: a shadow ray x -> y and the path x -> y -> sun.
+/// It is bidirectional path tracing's connection of a one-segment light subpath (Veach 1997,
+/// ch. 10), written here because nothing packaged does it inside our integrator. Photon density
+/// on the surface: p_A(y) = |ng . to_sun| / W; the estimate f_x cos_x f_y Phi cos_y / d^2 then
+/// needs no cosine at y. MIS: the path tracer makes the same path in two ways, a BSDF sample at
+/// x hitting y then (a) a BSDF sample at y hitting the sun or (b) next-event estimation of the
+/// sun at y. (a) keeps its weight; the weight (b) had is split between (b) and the photon (c) by
+/// the power heuristic on their densities of y given x, p_b = p_bsdf(x) cos_y / d^2 x sun pick
+/// at y and p_c = p_A(y) x emitted / live (only live photons are picked), so the weights still
+/// sum to 1 on every path. Unbiased; the photons' set is drawn per frame from its own seed.
+struct SunPhotons {
+  std::vector<SunPhoton> photons;  ///< the live ones, in emission order
+  size_t sun_pick = 0;             ///< the sun's pick entry
+  float solid_angle = 0.f;         ///< of the sun's disk
+  float live_share = 0.f;          ///< live / emitted
+  float inv_projected_area = 0.f;  ///< 1 / W
+  /// Density of a picked photon's point on the surface, per unit area, for |ng . to_sun|.
+  float density(float cos_g) const { return cos_g * inv_projected_area / live_share; }
+};
+
+constexpr int kSunPhotons = 1 << 16;
+constexpr uint64_t kSunPhotonSalt = 0xbb67ae8584caa73bull;
+
+/// Per-frame helpers of a call of `radiance`: the light cache (light_cache.h) light picks are
+/// weighed by, or the one this path's shadow rays train (at most one of the two), and the sun
+/// photons its vertices connect to (none while training).
 struct LightCaching {
   const LightCache* use = nullptr;
   LightCache* train = nullptr;
+  const SunPhotons* photons = nullptr;
 };
 
 /// The light cache's training pass: every kCacheTrainStride-th pixel in each direction, at
@@ -99,7 +144,9 @@ class PathTracer final : public Integrator {
     // threads or tiles.
     std::unique_ptr<LightCache> cache;
     if (ctx.options.light_cache) cache = trainLightCache(ctx, pixel_spread);
-    const LightCaching caching{cache.get(), nullptr};
+    std::unique_ptr<SunPhotons> photons;
+    if (ctx.options.sun_photons) photons = traceSunPhotons(ctx, cache.get());
+    const LightCaching caching{cache.get(), nullptr, photons.get()};
     const int tiles_x = (K.width + kTile - 1) / kTile, tiles_y = (K.height + kTile - 1) / kTile;
     auto tile = [&](const tbb::blocked_range<int>& range) {
       uint64_t tile_rays = 0;
@@ -162,6 +209,102 @@ class PathTracer final : public Integrator {
     });
     cache->build();
     return cache;
+  }
+
+  /// This frame's sun photons (SunPhotons), or nullptr without a sun, panes or live photons.
+  std::unique_ptr<SunPhotons> traceSunPhotons(const RenderContext& ctx,
+                                              const LightCache* cache) const {
+    const EmbreeScene& scene = ctx.scene;
+    const SceneLights& lights = scene.lights();
+    const std::optional<SceneLights::SunView> sun = lights.firstSun();
+    if (!sun || lights.portalCount() == 0) return nullptr;
+    std::vector<double> cdf;
+    double W = 0.0;
+    for (size_t i = 0; i < lights.portalCount(); ++i) {
+      const PortalTriangle& t = lights.portal(i);
+      W += static_cast<double>(t.area) * std::fabs(t.normal.dot(sun->to_sun));
+      cdf.push_back(W);
+    }
+    if (!(W > 0.0)) return nullptr;
+    const float solid_angle = sun->solidAngle();
+    const uint64_t seed = ctx.options.seed ^ kSunPhotonSalt;
+    std::vector<SunPhoton> all(kSunPhotons);
+    std::vector<char> live(kSunPhotons, 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, kSunPhotons), [&](const tbb::blocked_range<int>& r) {
+      uint64_t rays = 0;
+      for (int i = r.begin(); i < r.end(); ++i) {
+        // one Sobol sequence over the photons (stratified in direction, pane and point)
+        PixelSampler smp(seed, ctx.frame_index, 0, static_cast<uint32_t>(i), kSunPhotons);
+        const Vec3f d = sun->direction(smp.get2D());
+        const Eigen::Vector2f u = smp.get2D();
+        const double target = static_cast<double>(smp.get1D()) * W;
+        const size_t j = std::min<size_t>(
+            static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin()),
+            cdf.size() - 1);
+        const PortalTriangle& pane = lights.portal(j);
+        const float cos_pane = pane.normal.dot(d), cos_pane_centre = pane.normal.dot(sun->to_sun);
+        if (!(std::fabs(cos_pane) > 1e-4f) || !(std::fabs(cos_pane_centre) > 1e-4f)) continue;
+        const Vec3f q = pane.point(u);
+        const Vec3f sun_side = cos_pane > 0.f ? pane.normal : Vec3f(-pane.normal);
+        const Vec3f q_out = q + sun_side * (2.f * offsetScale(q));
+        // the sun reaches q with no pane or wall in the way
+        ++rays;
+        if (occluded(scene, q_out, d, std::numeric_limits<float>::infinity(), 0.f)) continue;
+        // in through q's pane and any behind it, to the first other surface
+        Vec3f T = Vec3f::Ones();
+        Ray ray{q_out, -d, 0.f};
+        RTCRayHit rh;
+        int panes = 0, object = -1;
+        float travelled = 0.f;
+        Vec3f ng;
+        for (;;) {
+          ++rays;
+          if (!intersect(scene, ray, rh)) break;
+          object = scene.objectOf(rh.hit);
+          ng = scene.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+          const BsdfParams& b = scene.object(object).bsdf;
+          travelled += rh.ray.tfar;
+          if (b.type != BsdfType::ThinDielectric || scene.object(object).first_light >= 0 ||
+              panes == kMaxPanes)
+            break;
+          T = T.cwiseProduct(thinDielectricTransmission(b, ng.dot(ray.d)));
+          const Vec3f p = ray.o + rh.ray.tfar * ray.d;
+          ray.o = p + ng * (ng.dot(ray.d) > 0.f ? offsetScale(p) : -offsetScale(p));
+          ++panes;
+          object = -1;
+        }
+        if (object < 0 || panes == 0 || !(T.maxCoeff() > 0.f)) continue;
+        SunPhoton& ph = all[static_cast<size_t>(i)];
+        ph.p = ray.o + rh.ray.tfar * ray.d;
+        scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
+                      kIndirectConeSpread * travelled, ph.sp);
+        if (isDelta(ph.sp.bsdf)) continue;
+        ph.to_sun = d;
+        ph.cos_g = std::fabs(ng.dot(d));
+        if (!(ph.cos_g > 0.f)) continue;
+        ph.flux = (sun->radiance * (solid_angle * static_cast<float>(W) *
+                                    std::fabs(cos_pane / cos_pane_centre)))
+                      .cwiseProduct(T);
+        // the pick point a vertex here lit from the sun's side takes (radiance(): Lambertian
+        // vertices pick from just above the surface on the side they light)
+        const Vec3f n_face = ng.dot(d) > 0.f ? ng : Vec3f(-ng);
+        const bool lambert = ph.sp.bsdf.type == BsdfType::Lambertian;
+        const Vec3f at = lambert ? Vec3f(ph.p + n_face * offsetScale(ph.p)) : ph.p;
+        ph.sun_pick = lights.pickProbability(lights.pickAt(at, cache), sun->pick);
+        if (!(ph.sun_pick > 0.f)) continue;
+        live[static_cast<size_t>(i)] = 1;
+      }
+      if (ctx.stats) ctx.stats->rays += rays;
+    });
+    auto out = std::make_unique<SunPhotons>();
+    for (size_t i = 0; i < all.size(); ++i)
+      if (live[i]) out->photons.push_back(all[i]);
+    if (out->photons.empty()) return nullptr;
+    out->sun_pick = sun->pick;
+    out->solid_angle = solid_angle;
+    out->live_share = static_cast<float>(out->photons.size()) / static_cast<float>(kSunPhotons);
+    out->inv_projected_area = static_cast<float>(1.0 / W);
+    return out;
   }
 
   /// Renders pixels [x0, x1) x [y0, y1) (at most 4 x 4) with packets of camera rays.
@@ -364,12 +507,15 @@ class PathTracer final : public Integrator {
   /// BSDF sampling hitting the 0.5-degree sun: fireflies on every sunlit wall).
   static constexpr int kMaxPanes = 8;
 
+  /// `panes`, when given, receives the number of panes crossed.
   static Vec3f shadowTransmittance(const EmbreeScene& scene, Vec3f o, const Vec3f& d, float tfar,
-                                   float time) {
+                                   float time, int* panes = nullptr) {
+    if (panes) *panes = 0;
     if (!occluded(scene, o, d, tfar, time)) return Vec3f::Ones();  // the common case, fast
     if (!scene.hasPanes()) return Vec3f::Zero();
     Vec3f T = Vec3f::Ones();
     for (int crossing = 0; crossing < kMaxPanes; ++crossing) {
+      if (panes) *panes = crossing;
       RTCRayHit rh;
       if (!intersect(scene, Ray{o, d, time}, rh, tfar)) return T;
       const int object = scene.objectOf(rh.hit);
@@ -382,6 +528,7 @@ class PathTracer final : public Integrator {
       const Vec3f p = o + t * d;
       o = p + ng * (ng.dot(d) > 0.f ? offsetScale(p) : -offsetScale(p));
       tfar -= t;
+      if (panes) *panes = crossing + 1;
       if (!(tfar > 0.f)) return T;
     }
     return Vec3f::Zero();  // more panes than any window has: treat as blocked
@@ -410,6 +557,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   bool splitting = first_surface != nullptr;
   if (first_surface) *first_surface = FirstSurface{};
   const EmbreeScene& scene = ctx.scene;
+  const SunPhotons* photons = caching.train ? nullptr : caching.photons;
   Vec3f L = Vec3f::Zero(), throughput = Vec3f::Ones();
   // Texture footprint: a ray cone (Akenine-Moller et al. 2021) of width `cone_width` at the
   // current hit, widening by `cone_spread` radians per metre travelled. From the camera it is the
@@ -530,10 +678,22 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         float tmax = std::isinf(ls.dist) ? std::numeric_limits<float>::infinity()
                                          : (lambert ? ls.dist : ls.dist - eps) * (1.f - 1e-4f);
         ++rays;
-        const Vec3f through = shadowTransmittance(scene, o, ls.wi, tmax, ray.time);
+        int panes_crossed = 0;
+        const Vec3f through =
+            shadowTransmittance(scene, o, ls.wi, tmax, ray.time, photons ? &panes_crossed : nullptr);
         trained_through = luminance(through);
         if (through.maxCoeff() > 0.f) {
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
+          // sunlight through a pane, reached from a vertex that connected to a sun photon:
+          // the photon's share of this path (SunPhotons)
+          if (photons && !no_mis && panes_crossed > 0 &&
+              static_cast<size_t>(ls.pick) == photons->sun_pick) {
+            const float dist = straight + t;
+            const float p_b = prev_bsdf_pdf * std::fabs(cos_emit) / (dist * dist) *
+                              (ls.pdf * photons->solid_angle);
+            const float p_c = photons->density(std::fabs(ng.dot(ls.wi)));
+            w *= powerHeuristic(p_b, p_c);
+          }
           L += throughput.cwiseProduct(f_cos.cwiseProduct(ls.radiance).cwiseProduct(through)) *
                (w / ls.pdf);
           if (splitting) {
@@ -549,6 +709,80 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     if (caching.train && ls.pick >= 0)
       caching.train->record(at.p, scene.lights().cacheSlot(static_cast<size_t>(ls.pick)),
                             trained_through);
+    if (photons && !isDelta(bsdf) && bounce + 1 < ctx.options.max_bounces) {
+      // connect to one sun photon (SunPhotons): the path x -> y -> sun
+      const SunPhoton& ph = photons->photons[std::min(
+          static_cast<size_t>(smp.get1D() * static_cast<float>(photons->photons.size())),
+          photons->photons.size() - 1)];
+      const Vec3f o = lambert ? p_face : offset(ph.p - p);
+      Vec3f w = ph.p - o;
+      const float dist = w.norm();
+      const Vec3f& ng_y = ph.sp.ng;
+      const float cos_y = dist > 0.f ? -ng_y.dot(w) / dist : 0.f;  // cos_emit at y
+      if (std::fabs(cos_y) > 1e-4f) {
+        w /= dist;
+        // at x, as for a light sample
+        Vec3f f_x = Vec3f::Zero();
+        float pdf_x = 0.f;
+        if (lambert) {
+          if (n_face.dot(w) > 0.f) {
+            const float cos_s = std::max(0.f, ns_face.dot(w));
+            f_x = sp.albedo * (cos_s / kPi);
+            pdf_x = cos_s / kPi;
+          }
+        } else {
+          const Vec3f wl = frame.toLocal(w);
+          if (consistent(w, wl.z())) {
+            const BsdfEval e = evalBsdfPdf(bsdf, wo, wl);
+            f_x = e.value;
+            pdf_x = e.pdf;
+          }
+        }
+        // at y, as radiance() would evaluate its sun sample arriving from x
+        Vec3f f_y = Vec3f::Zero();
+        float pdf_y = 0.f;
+        const BsdfParams& by = ph.sp.bsdf;
+        if (f_x.maxCoeff() > 0.f) {
+          if (by.type == BsdfType::Lambertian) {
+            const Vec3f nf = cos_y > 0.f ? ng_y : Vec3f(-ng_y);
+            const Vec3f nsf = cos_y > 0.f ? ph.sp.ns : Vec3f(-ph.sp.ns);
+            if (nf.dot(ph.to_sun) > 0.f) {
+              const float cos_s = std::max(0.f, nsf.dot(ph.to_sun));
+              f_y = ph.sp.albedo * (cos_s / kPi);
+              pdf_y = cos_s / kPi;
+            }
+          } else {
+            const Frame3 fy = Frame3::fromNormal(ph.sp.ns);
+            const Vec3f wo_y = fy.toLocal(-w), wi_y = fy.toLocal(ph.to_sun);
+            if (((ng_y.dot(ph.to_sun) > 0.f) == (cos_y > 0.f)) ==
+                ((wi_y.z() > 0.f) == (wo_y.z() > 0.f))) {
+              const BsdfEval e = evalBsdfPdf(by, wo_y, wi_y);
+              f_y = e.value;
+              pdf_y = e.pdf;
+            }
+          }
+        }
+        if (f_y.maxCoeff() > 0.f) {
+          const float g = std::fabs(cos_y) / (dist * dist);
+          const float tmax = (dist - 4.f * offsetScale(ph.p)) * (1.f - 1e-4f);
+          ++rays;
+          const Vec3f through = tmax > 0.f ? shadowTransmittance(scene, o, w, tmax, ray.time)
+                                           : Vec3f(Vec3f::Zero());
+          if (through.maxCoeff() > 0.f) {
+            const float nee_pdf = ph.sun_pick / photons->solid_angle;
+            const float p_b = pdf_x * g * ph.sun_pick;
+            const float p_c = photons->density(ph.cos_g);
+            const float weight = powerHeuristic(nee_pdf, pdf_y) * powerHeuristic(p_c, p_b) * g * photons->live_share / ph.cos_g;
+            const Vec3f light = f_y.cwiseProduct(ph.flux).cwiseProduct(through) * weight;
+            L += throughput.cwiseProduct(f_x.cwiseProduct(light));
+            if (splitting) {
+              const Vec3f f_diffuse = lambert ? f_x : evalBsdfDiffuse(bsdf, wo, frame.toLocal(w));
+              diffuse += throughput.cwiseProduct(f_diffuse.cwiseProduct(light));
+            }
+          }
+        }
+      }
+    }
     // continue the path by sampling the BSDF
     Vec3f wi;
     if (lambert) {

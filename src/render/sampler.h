@@ -90,15 +90,31 @@ inline uint32_t sobol1(uint32_t i, bool reversed = false) {
   return t[0][i & 0xff] ^ t[1][(i >> 8) & 0xff] ^ t[2][(i >> 16) & 0xff] ^ t[3][i >> 24];
 }
 
-/// 32-bit hash of four words (a murmur3-style finaliser over a splitmix combination).
+/// splitmix64's finaliser: every input bit flips each output bit with probability about 1/2.
+inline uint64_t mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// murmur3's 32-bit finaliser, the same for 32 bits.
+inline uint32_t mix32(uint32_t h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bu;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35u;
+  return h ^ (h >> 16);
+}
+
+/// 32-bit hash of four words, each folded in through a full avalanche. The scrambles of
+/// different sample dimensions must be independent: an earlier hash left the low bits of
+/// neighbouring dimensions' seeds correlated, and Owen scrambling turns a seed's low bits into
+/// a sample's leading digits (sampler_test checks the joint distribution).
 inline uint32_t hash4(uint64_t a, uint32_t b, uint32_t c, uint32_t d) {
-  uint64_t h = a * 0x9e3779b97f4a7c15ull;
-  h ^= (static_cast<uint64_t>(b) << 32 | c) + 0x632be59bd9b4e019ull + (h << 6) + (h >> 2);
-  h ^= static_cast<uint64_t>(d) * 0xbf58476d1ce4e5b9ull;
-  h ^= h >> 31;
-  h *= 0x94d049bb133111ebull;
-  h ^= h >> 29;
-  return static_cast<uint32_t>(h ^ (h >> 32));
+  uint64_t h = mix64(a + 0x9e3779b97f4a7c15ull);
+  h = mix64(h ^ (static_cast<uint64_t>(b) << 32 | c));
+  h = mix64(h + (static_cast<uint64_t>(d) + 1u) * 0x632be59bd9b4e019ull);
+  return static_cast<uint32_t>(h >> 32);
 }
 
 }  // namespace sobol_detail
@@ -135,9 +151,11 @@ class PixelSampler {
     // (owenScramble(index_, h), with the index's reversal done once in the constructor)
     uint32_t i = reverseBits(laineKarras(index_reversed_, h)) & index_mask_;
     // owenScramble(sobol0(i)) == reverseBits(laineKarras(i)): dimension 0 is i bit-reversed
-    uint32_t x = reverseBits(laineKarras(i, h * 0x68bc21ebu + 1u));
+    // (the two coordinates' scrambles from independent hashes of h: a linear map of h, as
+    // before, fixed their leading digits' relation, so that one sample's x and y were correlated)
+    uint32_t x = reverseBits(laineKarras(i, mix32(h ^ 0x68bc21ebu)));
     // owenScramble(sobol1(i)) with sobol1's table already bit-reversed
-    uint32_t y = reverseBits(laineKarras(sobol1(i, true), h * 0x02e5be93u + 2u));
+    uint32_t y = reverseBits(laineKarras(sobol1(i, true), mix32(h ^ 0x02e5be93u)));
     return {toUnit(x), toUnit(y)};
   }
   /// The next 1D sample in [0, 1) (stratified: the first coordinate of a fresh pair).
