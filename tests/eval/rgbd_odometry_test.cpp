@@ -48,21 +48,23 @@ TEST(RgbdOdometry, TracksTheGeneratedRoom) {
     EXPECT_EQ(r.estimate.poses[0].T_world_camera.t, r.ground_truth.poses[0].T_world_camera.t);
     for (size_t k = 0; k < r.estimate.size(); ++k)
       EXPECT_EQ(r.estimate.poses[k].t_ns, r.ground_truth.poses[k].t_ns);
-    // measured (6 frames, 4.5 cm of path): rgbd 10.5 mm, icp 0.09 mm, rgbd-icp 0.13 mm; a
+    // measured (6 frames, 4.5 cm of path): rgbd 3.9 mm, icp 0.09 mm, rgbd-icp 0.13 mm; a
     // camera that stands still scores 15 mm. Unaligned (drift): icp 0.8 mm, rgbd-icp 0.6 mm,
-    // and rgbd 26 mm, no better than the 27 mm of standing still: the photometric method is
-    // ill-conditioned on this view (docs/eval.md). Its drift is no property of the frames'
-    // quality: 256-spp frames of the same poses drift 25.9 mm (0.95x standing still), the
-    // fixture's 2-spp frames 15 mm with the plain light pick and 26 mm with the light cache,
-    // which brings them closer to those references. So the photometric bound only catches
-    // steps chained the wrong way round (about 2x standing still); the depth methods, which
-    // chain through the same code, pin the direction at 0.1x.
-    const double bound_m = m == OdometryMethod::Rgbd ? 0.02 : 0.003;
+    // which pins the direction the steps are chained in (the three methods chain through the
+    // same code). The photometric method's unaligned drift is not checked: it is
+    // ill-conditioned on this view (docs/eval.md) and tells nothing, not even the direction.
+    // Its 38 mm is worse than standing still (27 mm) and than the same steps chained the wrong
+    // way round (29 mm). 256-spp frames of the same poses drift 25.9 mm, and the fixture's
+    // 2-spp frames drifted anywhere from 15 to 38 mm as the renderer's noise changed, while
+    // their aligned ATE went from 10.5 mm to 3.9 mm. Its aligned ATE is what is checked, at
+    // 10 mm (it was 20 mm when the frames gave 10.5).
+    const double bound_m = m == OdometryMethod::Rgbd ? 0.01 : 0.003;
     EXPECT_LT(r.ate.translation_m.rmse, bound_m) << r.toString();
     EXPECT_EQ(r.ate.matches.size(), r.estimate.size());
-    const double still_m = standStillAte(r.ground_truth, AlignMode::None);
-    EXPECT_LT(r.drift.translation_m.rmse, (m == OdometryMethod::Rgbd ? 1.3 : 0.1) * still_m)
-        << r.toString();
+    if (m != OdometryMethod::Rgbd) {
+      const double still_m = standStillAte(r.ground_truth, AlignMode::None);
+      EXPECT_LT(r.drift.translation_m.rmse, 0.1 * still_m) << r.toString();
+    }
     // deterministic: OpenCV samples its pixel subset with a fixed seed
     const OdometryResult again = rgbdOdometry(seq, opt);
     EXPECT_EQ(again.ate.translation_m.rmse, r.ate.translation_m.rmse);
