@@ -88,18 +88,20 @@ struct SunPhoton {
 /// goes on through the panes to the first other surface, y. Every non-delta path vertex x then
 /// connects to one photon picked uniformly: a shadow ray x -> y and the path x -> y -> sun.
 /// It is bidirectional path tracing's connection of a one-segment light subpath (Veach 1997,
-/// ch. 10), written here because nothing packaged does it inside our integrator. Photon density
-/// on the surface: p_A(y) = |ng . to_sun| / W; the estimate f_x cos_x f_y Phi cos_y / d^2 then
-/// needs no cosine at y. MIS: the path tracer makes the same path in two ways, a BSDF sample at
-/// x hitting y then (a) a BSDF sample at y hitting the sun or (b) next-event estimation of the
-/// sun at y. (a) keeps its weight; the weight (b) had is split between (b) and the photon (c) by
-/// the power heuristic on their densities of y given x (paths through a pane between x and y
-/// are left to (a) and (b): the connection's shadow ray stops at panes), p_b = p_bsdf(x) cos_y / d^2 x sun pick
-/// at y and p_c = p_A(y) x emitted / live (only live photons are picked), so the weights still
-/// sum to 1 on every path. Only the diffuse lobes at y take part (evalBsdfDiffuse): the sun's
-/// glossy reflection (a varnished floor's) stays with (a) and (b), as a photon picked uniformly
-/// finds its narrow lobe no better. Unbiased; the photons' set is drawn
-/// per frame from its own seed, one Sobol sequence over the photons.
+/// ch. 10), written here because nothing packaged does it inside our integrator.
+///
+/// Photon density on the surface: p_A(y) = |ng . to_sun| / W; the estimate
+/// f_x cos_x f_y Phi cos_y / d^2 then needs no cosine at y. MIS: the path tracer makes the same
+/// path in two ways, a BSDF sample at x hitting y then (a) a BSDF sample at y hitting the sun or
+/// (b) next-event estimation of the sun at y. (a) keeps its weight; the weight (b) had is split
+/// between (b) and the photon (c) by the power heuristic on their densities of y given x,
+/// p_b = p_bsdf(x) cos_y / d^2 x the sun's pick at y and p_c = p_A(y) x emitted / live (only
+/// live photons are picked), so the weights still sum to 1 on every path. Paths through a pane
+/// between x and y are left to (a) and (b) (the connection's shadow ray stops at panes). Only
+/// the diffuse lobes at y take part (evalBsdfDiffuse): the sun's glossy reflection (a varnished
+/// floor's) stays with (a) and (b), as a photon picked uniformly finds its narrow lobe no better.
+/// Unbiased; the photons are drawn per frame from their own seed, one Sobol sequence over them,
+/// at the exposure's start (time 0).
 struct SunPhotons {
   std::vector<SunPhoton> photons;  ///< the live ones, in emission order
   size_t sun_pick = 0;             ///< the sun's pick entry
@@ -238,7 +240,8 @@ class PathTracer final : public Integrator {
     const uint64_t seed = ctx.options.seed ^ kSunPhotonSalt;
     std::vector<SunPhoton> all(kSunPhotons);
     std::vector<char> live(kSunPhotons, 0);
-    tbb::parallel_for(tbb::blocked_range<int>(0, kSunPhotons), [&](const tbb::blocked_range<int>& r) {
+    const tbb::blocked_range<int> photon_indices(0, kSunPhotons);
+    tbb::parallel_for(photon_indices, [&](const tbb::blocked_range<int>& r) {
       uint64_t rays = 0;
       for (int i = r.begin(); i < r.end(); ++i) {
         // one Sobol sequence over the photons (stratified in direction, pane and point)
@@ -688,7 +691,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         ++rays;
         int panes_crossed = 0;
         const Vec3f through =
-            shadowTransmittance(scene, o, ls.wi, tmax, ray.time, photons ? &panes_crossed : nullptr);
+            shadowTransmittance(scene, o, ls.wi, tmax, ray.time,
+                                photons ? &panes_crossed : nullptr);
         trained_through = luminance(through);
         if (through.maxCoeff() > 0.f) {
           float w = ls.delta ? 1.f : powerHeuristic(ls.pdf, bsdf_pdf);
@@ -786,7 +790,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
             const float nee_pdf = ph.sun_pick / photons->solid_angle;
             const float p_b = pdf_x * g * ph.sun_pick;
             const float p_c = photons->density(ph.cos_g);
-            const float weight = powerHeuristic(nee_pdf, pdf_y) * powerHeuristic(p_c, p_b) * g * photons->live_share / ph.cos_g;
+            const float weight = powerHeuristic(nee_pdf, pdf_y) * powerHeuristic(p_c, p_b) * g *
+                                 photons->live_share / ph.cos_g;
             const Vec3f light = f_y.cwiseProduct(ph.flux) * weight;
             L += throughput.cwiseProduct(f_x.cwiseProduct(light));
             if (splitting) {
