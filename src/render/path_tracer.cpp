@@ -67,6 +67,32 @@ float offsetScale(const Vec3f& p) {
   return 1e-4f * (1.0f + p.cwiseAbs().maxCoeff());
 }
 
+/// The pane triangle farthest along the ray o + t d (t > 0) that it crosses, or -1: where the
+/// sun's light on o came in, when that light crossed a pane (Moller-Trumbore).
+int outermostPortal(const SceneLights& lights, const Vec3f& o, const Vec3f& d) {
+  int best = -1;
+  float best_t = 0.f;
+  for (size_t i = 0; i < lights.portalCount(); ++i) {
+    const PortalTriangle& tri = lights.portal(i);
+    const Vec3f pv = d.cross(tri.e2);
+    const float det = tri.e1.dot(pv);
+    if (std::fabs(det) < 1e-12f) continue;
+    const float inv = 1.f / det;
+    const Vec3f tv = o - tri.p0;
+    const float u = tv.dot(pv) * inv;
+    if (u < 0.f || u > 1.f) continue;
+    const Vec3f qv = tv.cross(tri.e1);
+    const float v = d.dot(qv) * inv;
+    if (v < 0.f || u + v > 1.f) continue;
+    const float t = tri.e2.dot(qv) * inv;
+    if (t > best_t) {
+      best_t = t;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
 /// A sunlit point that a sun photon found (SunPhotons).
 struct SunPhoton {
   Vec3f p;           ///< on the surface
@@ -76,6 +102,7 @@ struct SunPhoton {
   float sun_pick = 0.f;  ///< probability that the light pick at p (as a path vertex lit from
                          ///< the sun's side makes it) chooses the sun
   SurfacePoint sp;   ///< the surface there (sp.ng: geometric normal)
+  int portal = -1;   ///< the pane triangle it came in through
 };
 
 /// Sun photons: sunlight through windows by way of the surfaces it lands on. Indoors most light
@@ -102,14 +129,43 @@ struct SunPhoton {
 /// floor's) stays with (a) and (b), as a photon picked uniformly finds its narrow lobe no better.
 /// Unbiased; the photons are drawn per frame from their own seed, one Sobol sequence over them,
 /// at the exposure's start (time 0).
+///
+/// Picking: the live photons are grouped by the pane triangle they came through, and a vertex
+/// picks a group by the light it delivered over the squared distance to its photons' centre
+/// (never below their own spread), then a photon of it uniformly: the patches of the room a
+/// vertex is in, not those behind its walls, get most connections. The density a pick gives y
+/// is P(group | x) x |ng . to_sun| / W_group x emitted / live (of that group); the path tracer
+/// finds y's group as the outermost pane triangle its sun ray crosses.
 struct SunPhotons {
-  std::vector<SunPhoton> photons;  ///< the live ones, in emission order
-  size_t sun_pick = 0;             ///< the sun's pick entry
-  float solid_angle = 0.f;         ///< of the sun's disk
-  float live_share = 0.f;          ///< live / emitted
-  float inv_projected_area = 0.f;  ///< 1 / W
-  /// Density of a picked photon's point on the surface, per unit area, for |ng . to_sun|.
-  float density(float cos_g) const { return cos_g * inv_projected_area / live_share; }
+  struct Group {
+    Vec3f centre = Vec3f::Zero();
+    float spread2 = 0.f;    ///< squared RMS distance of its photons from the centre (>= 1 cm^2)
+    float delivered = 0.f;  ///< W_group x live / emitted: its share of the light, unnormalised
+    float density_scale = 0.f;  ///< emitted / (live x W_group): density = cos_g x this
+    size_t first = 0, count = 0;  ///< its photons in `photons`
+  };
+  std::vector<SunPhoton> photons;  ///< the live ones, by group, in emission order within one
+  std::vector<Group> groups;
+  std::vector<int> group_of_portal;  ///< per pane triangle: its group, -1 when no photon lived
+  size_t sun_pick = 0;               ///< the sun's pick entry
+  float solid_angle = 0.f;           ///< of the sun's disk
+  float inv_projected_area = 0.f;    ///< 1 / W (all panes)
+
+  /// Unnormalised probability of picking group g from a vertex at x.
+  float groupWeight(size_t g, const Vec3f& x) const {
+    const Group& gr = groups[g];
+    return gr.delivered / std::max((x - gr.centre).squaredNorm(), gr.spread2);
+  }
+  float groupTotal(const Vec3f& x) const {
+    float total = 0.f;
+    for (size_t g = 0; g < groups.size(); ++g) total += groupWeight(g, x);
+    return total;
+  }
+  /// Density with which a pick from x chooses a photon at y of group g (|ng . to_sun| there).
+  float density(const Vec3f& x, size_t g, float cos_g) const {
+    const float total = groupTotal(x);
+    return total > 0.f ? groupWeight(g, x) / total * cos_g * groups[g].density_scale : 0.f;
+  }
 };
 
 constexpr int kSunPhotons = 1 << 16;
@@ -240,6 +296,7 @@ class PathTracer final : public Integrator {
     const uint64_t seed = ctx.options.seed ^ kSunPhotonSalt;
     std::vector<SunPhoton> all(kSunPhotons);
     std::vector<char> live(kSunPhotons, 0);
+    std::vector<int> portal_of(kSunPhotons, -1);
     const tbb::blocked_range<int> photon_indices(0, kSunPhotons);
     tbb::parallel_for(photon_indices, [&](const tbb::blocked_range<int>& r) {
       uint64_t rays = 0;
@@ -252,6 +309,7 @@ class PathTracer final : public Integrator {
         const size_t j = std::min<size_t>(
             static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin()),
             cdf.size() - 1);
+        portal_of[static_cast<size_t>(i)] = static_cast<int>(j);
         const PortalTriangle& pane = lights.portal(j);
         const float cos_pane = pane.normal.dot(d), cos_pane_centre = pane.normal.dot(sun->to_sun);
         if (!(std::fabs(cos_pane) > 1e-4f) || !(std::fabs(cos_pane_centre) > 1e-4f)) continue;
@@ -286,6 +344,7 @@ class PathTracer final : public Integrator {
         }
         if (object < 0 || panes == 0 || !(T.maxCoeff() > 0.f)) continue;
         SunPhoton& ph = all[static_cast<size_t>(i)];
+        ph.portal = static_cast<int>(j);
         ph.p = ray.o + rh.ray.tfar * ray.d;
         scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d,
                       kIndirectConeSpread * travelled, ph.sp);
@@ -308,12 +367,52 @@ class PathTracer final : public Integrator {
       if (ctx.stats) ctx.stats->rays += rays;
     });
     auto out = std::make_unique<SunPhotons>();
+    const size_t n_portals = lights.portalCount();
+    std::vector<size_t> emitted(n_portals, 0), lived(n_portals, 0);
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (portal_of[i] >= 0) ++emitted[static_cast<size_t>(portal_of[i])];
+      if (live[i]) ++lived[static_cast<size_t>(all[i].portal)];
+    }
+    out->group_of_portal.assign(n_portals, -1);
+    for (size_t j = 0; j < n_portals; ++j) {
+      if (lived[j] == 0) continue;
+      out->group_of_portal[j] = static_cast<int>(out->groups.size());
+      SunPhotons::Group g;
+      const PortalTriangle& t = lights.portal(j);
+      const double W_j = static_cast<double>(t.area) * std::fabs(t.normal.dot(sun->to_sun));
+      g.delivered = static_cast<float>(W_j * static_cast<double>(lived[j]) / emitted[j]);
+      g.density_scale = static_cast<float>(static_cast<double>(emitted[j]) / (lived[j] * W_j));
+      out->groups.push_back(g);
+    }
+    if (out->groups.empty()) return nullptr;
+    // the live photons by group (a stable counting sort: emission order within a group)
+    for (SunPhotons::Group& g : out->groups) g.count = 0;
     for (size_t i = 0; i < all.size(); ++i)
-      if (live[i]) out->photons.push_back(all[i]);
-    if (out->photons.empty()) return nullptr;
+      if (live[i]) ++out->groups[static_cast<size_t>(out->group_of_portal[all[i].portal])].count;
+    size_t next = 0;
+    for (SunPhotons::Group& g : out->groups) {
+      g.first = next;
+      next += g.count;
+    }
+    out->photons.resize(next);
+    std::vector<size_t> fill(out->groups.size(), 0);
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (!live[i]) continue;
+      const auto g = static_cast<size_t>(out->group_of_portal[all[i].portal]);
+      out->photons[out->groups[g].first + fill[g]++] = all[i];
+    }
+    for (SunPhotons::Group& g : out->groups) {
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (size_t k = 0; k < g.count; ++k) c += out->photons[g.first + k].p.cast<double>();
+      c /= static_cast<double>(g.count);
+      double r2 = 0.0;
+      for (size_t k = 0; k < g.count; ++k)
+        r2 += (out->photons[g.first + k].p.cast<double>() - c).squaredNorm();
+      g.centre = c.cast<float>();
+      g.spread2 = std::max(static_cast<float>(r2 / static_cast<double>(g.count)), 1e-4f);
+    }
     out->sun_pick = sun->pick;
     out->solid_angle = solid_angle;
-    out->live_share = static_cast<float>(out->photons.size()) / static_cast<float>(kSunPhotons);
     out->inv_projected_area = static_cast<float>(1.0 / W);
     return out;
   }
@@ -588,6 +687,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   bool no_mis = true;
   float straight = 0.f;
   SceneLights::PickPoint light_at;  // where the vertex before `ray` sampled lights (MIS pdfs)
+  Vec3f prev_p = Vec3f::Zero();     // that vertex (where it picked its sun photon)
   int panes = 0;  // panes passed straight through (at most kMaxPanes per path)
   for (int bounce = 0, vertex = 0;; ++bounce, ++vertex) {
     const bool from_camera = vertex == 0;  // the camera's own ray (not one through a pane)
@@ -705,7 +805,13 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
             const float dist = straight + t;
             const float p_b = prev_bsdf_pdf * std::fabs(cos_emit) / (dist * dist) *
                               (ls.pdf * photons->solid_angle);
-            const float p_c = photons->density(std::fabs(ng.dot(ls.wi)));
+            // the group that could have sent this light: the outermost pane triangle crossed
+            const int portal = outermostPortal(scene.lights(), p, ls.wi);
+            const int group = portal >= 0 ? photons->group_of_portal[static_cast<size_t>(portal)]
+                                          : -1;
+            const float p_c = group >= 0 ? photons->density(prev_p, static_cast<size_t>(group),
+                                                            std::fabs(ng.dot(ls.wi)))
+                                         : 0.f;
             const Vec3f f_diffuse =
                 lambert ? f_cos : evalBsdfDiffuse(bsdf, wo, frame.toLocal(ls.wi));
             f_weighted -= f_diffuse * (w * (1.f - powerHeuristic(p_b, p_c)));
@@ -727,10 +833,22 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
                             trained_through);
     if (photons && !isDelta(bsdf) && bounce < kSunPhotonVertices &&
         bounce + 1 < ctx.options.max_bounces) {
-      // connect to one sun photon (SunPhotons): the path x -> y -> sun
-      const SunPhoton& ph = photons->photons[std::min(
-          static_cast<size_t>(smp.get1D() * static_cast<float>(photons->photons.size())),
-          photons->photons.size() - 1)];
+      // connect to one sun photon (SunPhotons): a group by its weight here, a photon of it
+      // uniformly; the path x -> y -> sun
+      const Eigen::Vector2f u_photon = smp.get2D();
+      const float total = photons->groupTotal(p);
+      size_t group = 0;
+      float acc = 0.f, w_group = 0.f;
+      for (const float target = u_photon.x() * total; group < photons->groups.size(); ++group) {
+        acc += (w_group = photons->groupWeight(group, p));
+        if (target < acc) break;
+      }
+      if (group == photons->groups.size()) group = photons->groups.size() - 1;
+      while (w_group == 0.f && group > 0) w_group = photons->groupWeight(--group, p);
+      const SunPhotons::Group& gr = photons->groups[group];
+      const size_t k = std::min(
+          static_cast<size_t>(u_photon.y() * static_cast<float>(gr.count)), gr.count - 1);
+      const SunPhoton& ph = photons->photons[gr.first + k];
       const Vec3f o = lambert ? p_face : offset(ph.p - p);
       Vec3f w = ph.p - o;
       const float dist = w.norm();
@@ -789,9 +907,10 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
           if (tmax > 0.f && !occluded(scene, o, w, tmax, ray.time)) {
             const float nee_pdf = ph.sun_pick / photons->solid_angle;
             const float p_b = pdf_x * g * ph.sun_pick;
-            const float p_c = photons->density(ph.cos_g);
+            const float p_c = w_group / total * ph.cos_g * gr.density_scale;
+            // f / p_c, with the flux's W over the density's
             const float weight = powerHeuristic(nee_pdf, pdf_y) * powerHeuristic(p_c, p_b) * g *
-                                 photons->live_share / ph.cos_g;
+                                 photons->inv_projected_area / p_c;
             const Vec3f light = f_y.cwiseProduct(ph.flux) * weight;
             L += throughput.cwiseProduct(f_x.cwiseProduct(light));
             if (splitting) {
@@ -814,6 +933,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       no_mis = false;
       straight = 0.f;
       light_at = at;
+      prev_p = p;
       throughput = throughput.cwiseProduct(sp.albedo);
     } else {
       std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
@@ -834,6 +954,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         no_mis = bs->delta;
         straight = 0.f;
         light_at = at;
+        prev_p = p;
       }
       throughput = throughput.cwiseProduct(bs->weight);
     }

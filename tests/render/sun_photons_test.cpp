@@ -1,7 +1,7 @@
 // Sun photons (path_tracer.cpp, RenderOptions::sun_photons): a closed grey room whose only
-// light is the sun through a glazed window, seen where the light is all indirect (the wall the
-// sun does not reach). The photons keep the mean of plain path tracing and cut its noise, with
-// the same bytes on any thread count.
+// light is the sun through two glazed windows (so the photons fall into groups of unequal
+// shares), seen toward the walls their patches light. The photons keep the mean of plain path
+// tracing and cut its noise, with the same bytes on any thread count.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -14,8 +14,9 @@
 namespace inet {
 namespace {
 
-/// A room 4 x 3 x 2.5 m of grey slabs (walls 10 cm thick), with a 1 x 1 m window in the wall at
-/// x = +2 closed by a pane, under a sun low enough to shine through it onto the floor.
+/// A room 4 x 3 x 2.5 m of grey slabs (walls 10 cm thick), with 1 x 1 m windows closed by panes
+/// in the walls at x = +2 and y = -1.5, under a sun low enough to shine through both onto the
+/// floor (through the second at a grazing angle: the photons' groups get unequal shares).
 Scene sunlitRoom() {
   Scene s;
   Mesh box = makePrimitive("box", {}, "test", "box");
@@ -38,7 +39,11 @@ Scene sunlitRoom() {
   slab("floor", Vec3(-2 - t, -1.5 - t, -t), Vec3(2 + t, 1.5 + t, 0));
   slab("ceiling", Vec3(-2 - t, -1.5 - t, 2.5), Vec3(2 + t, 1.5 + t, 2.5 + t));
   slab("west", Vec3(-2 - t, -1.5, 0), Vec3(-2, 1.5, 2.5));
-  slab("south", Vec3(-2, -1.5 - t, 0), Vec3(2, -1.5, 2.5));
+  // the south wall around a window of x in [-1, 0], z in [0.75, 1.75]
+  slab("south_low", Vec3(-2, -1.5 - t, 0), Vec3(2, -1.5, 0.75));
+  slab("south_high", Vec3(-2, -1.5 - t, 1.75), Vec3(2, -1.5, 2.5));
+  slab("south_left", Vec3(-2, -1.5 - t, 0.75), Vec3(-1, -1.5, 1.75));
+  slab("south_right", Vec3(0, -1.5 - t, 0.75), Vec3(2, -1.5, 1.75));
   slab("north", Vec3(-2, 1.5, 0), Vec3(2, 1.5 + t, 2.5));
   // the east wall around a window of y in [-0.5, 0.5], z in [0.75, 1.75]
   slab("east_low", Vec3(2, -1.5, 0), Vec3(2 + t, 1.5, 0.75));
@@ -49,6 +54,10 @@ Scene sunlitRoom() {
   P.block<3, 3>(0, 0) << 0, 0, 1, 1, 0, 0, 0, 1, 0;
   P.block<3, 1>(0, 3) = Vec3(2.05, 0, 1.25);
   s.objects.push_back(Object::make("pane", 1, 1, P, 9, static_cast<int>(s.objects.size()) + 1));
+  Mat4 Q = Mat4::Identity();  // the unit quad turned to face -y, in the south window
+  Q.block<3, 3>(0, 0) << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  Q.block<3, 1>(0, 3) = Vec3(-0.5, -1.55, 1.25);
+  s.objects.push_back(Object::make("pane2", 1, 1, Q, 9, static_cast<int>(s.objects.size()) + 1));
   Light sun;
   sun.name = "sun";
   sun.type = LightType::Sun;
@@ -78,7 +87,7 @@ TEST(SunPhotons, IndirectSunlightKeepsItsMeanWithLessNoiseAndTheSameBytesOnAnyTh
   const Scene s = sunlitRoom();
   Renderer r(s);
   const CameraIntrinsics K = CameraIntrinsics::centred(48, 36, 40);
-  // from the window side toward the west wall, floor and ceiling in view, the sun patch not
+  // from the east window's side toward the west wall, the floor and the ceiling
   const Pose pose = Pose::lookAt(Vec3(1.6, 0.9, 1.6), Vec3(-2, -0.3, 1.3), Vec3::UnitZ());
   auto render = [&](int spp, bool photons, uint64_t seed, int bounces = 4) {
     RenderOptions opt;
