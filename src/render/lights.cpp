@@ -372,22 +372,12 @@ float SceneLights::portalWeight(const Vec3f& p, float* kept, size_t kept_count) 
 }
 
 float SceneLights::portalPdf(const Vec3f& p, const Vec3f& d, float w) const {
-  // every portal triangle the ray p + t d (t > 0) crosses (Moller-Trumbore): the pdf of having
+  // every portal triangle the ray p + t d (t > 0) crosses: the pdf of having
   // chosen that point on it, as a solid angle density
   float pdf = 0.f;
   for (size_t i = 0; i < portals_.size(); ++i) {
     const PortalTriangle& t = portals_[i];
-    const Vec3f h = d.cross(t.e2);
-    const float det = t.e1.dot(h);
-    if (std::abs(det) < 1e-12f) continue;
-    const float inv = 1.f / det;
-    const Vec3f s = p - t.p0;
-    const float b1 = s.dot(h) * inv;
-    if (b1 < 0.f || b1 > 1.f) continue;
-    const Vec3f q = s.cross(t.e1);
-    const float b2 = d.dot(q) * inv;
-    if (b2 < 0.f || b1 + b2 > 1.f) continue;
-    const float dist = t.e2.dot(q) * inv;
+    const float dist = t.crossing(p, d);
     if (!(dist > 0.f)) continue;
     const float cos = std::abs(t.normal.dot(d));
     if (!(cos > 0.f)) continue;

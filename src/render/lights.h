@@ -48,6 +48,22 @@ struct WorldTriangle {
     const float su = std::sqrt(u.x());
     return p0 + e1 * (1.f - su) + e2 * (su * u.y());
   }
+  /// The distance t > 0 at which the ray o + t d crosses the triangle, or 0 when it does not
+  /// (Moller-Trumbore).
+  float crossing(const Vec3f& o, const Vec3f& d) const {
+    const Vec3f h = d.cross(e2);
+    const float det = e1.dot(h);
+    if (std::abs(det) < 1e-12f) return 0.f;
+    const float inv = 1.f / det;
+    const Vec3f s = o - p0;
+    const float b1 = s.dot(h) * inv;
+    if (b1 < 0.f || b1 > 1.f) return 0.f;
+    const Vec3f q = s.cross(e1);
+    const float b2 = d.dot(q) * inv;
+    if (b2 < 0.f || b1 + b2 > 1.f) return 0.f;
+    const float t = e2.dot(q) * inv;
+    return t > 0.f ? t : 0.f;
+  }
 };
 
 /// An emissive triangle (one-sided: emits along `normal`).

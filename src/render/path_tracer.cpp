@@ -68,23 +68,12 @@ float offsetScale(const Vec3f& p) {
 }
 
 /// The pane triangle farthest along the ray o + t d (t > 0) that it crosses, or -1: where the
-/// sun's light on o came in, when that light crossed a pane (Moller-Trumbore).
+/// sun's light on o came in, when that light crossed a pane.
 int outermostPortal(const SceneLights& lights, const Vec3f& o, const Vec3f& d) {
   int best = -1;
   float best_t = 0.f;
   for (size_t i = 0; i < lights.portalCount(); ++i) {
-    const PortalTriangle& tri = lights.portal(i);
-    const Vec3f pv = d.cross(tri.e2);
-    const float det = tri.e1.dot(pv);
-    if (std::fabs(det) < 1e-12f) continue;
-    const float inv = 1.f / det;
-    const Vec3f tv = o - tri.p0;
-    const float u = tv.dot(pv) * inv;
-    if (u < 0.f || u > 1.f) continue;
-    const Vec3f qv = tv.cross(tri.e1);
-    const float v = d.dot(qv) * inv;
-    if (v < 0.f || u + v > 1.f) continue;
-    const float t = tri.e2.dot(qv) * inv;
+    const float t = lights.portal(i).crossing(o, d);
     if (t > best_t) {
       best_t = t;
       best = static_cast<int>(i);
