@@ -254,8 +254,9 @@ void estimateVariance(const Guide& g, Signal& s, const DenoiseOptions& opt) {
   }
 }
 
-/// 1 / (sigma_color * sqrt(3x3 Gaussian of the variance over valid pixels) + 1e-8) per pixel.
-std::vector<float> colourScale(const Guide& g, const Signal& s, float sigma_color) {
+/// The 3x3 Gaussian (1 2 1 x 1 2 1) of v over valid pixels, per pixel (0 where no neighbour
+/// is valid).
+std::vector<float> gaussian3x3(const Guide& g, const std::vector<float>& v) {
   std::vector<float> out(g.size(), 0.f);
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, kRowGrain), [&](const auto& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -267,15 +268,21 @@ std::vector<float> colourScale(const Guide& g, const Signal& s, float sigma_colo
             if (x + dx < 0 || x + dx >= g.width) continue;
             size_t q = static_cast<size_t>(y + dy) * g.width + (x + dx);
             float k = (dx == 0 ? 2.f : 1.f) * (dy == 0 ? 2.f : 1.f) * g.valid[q];
-            sum += k * s.var[q];
+            sum += k * v[q];
             wsum += k;
           }
         }
-        float var = wsum > 0.f ? sum / wsum : 0.f;
-        out[static_cast<size_t>(y) * g.width + x] = 1.f / (sigma_color * std::sqrt(var) + 1e-8f);
+        out[static_cast<size_t>(y) * g.width + x] = wsum > 0.f ? sum / wsum : 0.f;
       }
     }
   });
+  return out;
+}
+
+/// 1 / (sigma_color * sqrt(3x3 Gaussian of the variance over valid pixels) + 1e-8) per pixel.
+std::vector<float> colourScale(const Guide& g, const Signal& s, float sigma_color) {
+  std::vector<float> out = gaussian3x3(g, s.var);
+  for (float& v : out) v = 1.f / (sigma_color * std::sqrt(v) + 1e-8f);
   return out;
 }
 
@@ -343,26 +350,7 @@ void atrousLevel(const Guide& g, const Signal& in, Signal& out, int step,
   // toward the median: walls of a default sequence frame came out 1.7 % dark.
   std::vector<float> prefiltered;
   if (step == 1) {
-    prefiltered.assign(g.size(), 0.f);
-    tbb::parallel_for(tbb::blocked_range<int>(0, g.height, kRowGrain), [&](const auto& rows) {
-      for (int y = rows.begin(); y < rows.end(); ++y)
-        for (int x = 0; x < g.width; ++x) {
-          const size_t i = static_cast<size_t>(y) * g.width + x;
-          if (g.valid[i] == 0.f) continue;
-          float sum = 0.f, wsum = 0.f;
-          for (int dy = -1; dy <= 1; ++dy) {
-            if (y + dy < 0 || y + dy >= g.height) continue;
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (x + dx < 0 || x + dx >= g.width) continue;
-              const size_t q = static_cast<size_t>(y + dy) * g.width + (x + dx);
-              const float k = (dx == 0 ? 2.f : 1.f) * (dy == 0 ? 2.f : 1.f) * g.valid[q];
-              sum += k * in.lum[q];
-              wsum += k;
-            }
-          }
-          prefiltered[i] = sum / wsum;
-        }
-    });
+    prefiltered = gaussian3x3(g, in.lum);
     for (float& v : scale) v *= 16.f / 6.f;  // 1 / sqrt(36 / 256)
   }
   TapContext ctx{g, in, step == 1 ? prefiltered.data() : in.lum.data(), scale, opt.sigma_normal,

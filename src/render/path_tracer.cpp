@@ -150,18 +150,11 @@ struct SunPhotons {
     for (size_t g = 0; g < groups.size(); ++g) total += groupWeight(g, x);
     return total;
   }
-  /// Density with which a pick from x chooses a photon at y of group g (|ng . to_sun| there).
-  float density(const Vec3f& x, size_t g, float cos_g) const {
-    const float total = groupTotal(x);
-    return total > 0.f ? groupWeight(g, x) / total * cos_g * groups[g].density_scale : 0.f;
-  }
 };
 
 constexpr int kSunPhotons = 1 << 16;
-/// Vertices that connect to a photon: the first kSunPhotonVertices of a path (all of them: on
-/// the default 12-frame sequence of apartment 3, the first two alone saved 10 % of the time and
-/// gave back a third of the gain in flat-region error).
-constexpr int kSunPhotonVertices = 64;
+// Every non-delta vertex connects: on the default 12-frame sequence of apartment 3, the first
+// two alone saved 10 % of the time and gave back a third of the gain in flat-region error.
 constexpr uint64_t kSunPhotonSalt = 0xbb67ae8584caa73bull;
 
 /// Per-frame helpers of a call of `radiance`: the light cache (light_cache.h) light picks are
@@ -375,7 +368,6 @@ class PathTracer final : public Integrator {
     }
     if (out->groups.empty()) return nullptr;
     // the live photons by group (a stable counting sort: emission order within a group)
-    for (SunPhotons::Group& g : out->groups) g.count = 0;
     for (size_t i = 0; i < all.size(); ++i)
       if (live[i]) ++out->groups[static_cast<size_t>(out->group_of_portal[all[i].portal])].count;
     size_t next = 0;
@@ -677,6 +669,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   float straight = 0.f;
   SceneLights::PickPoint light_at;  // where the vertex before `ray` sampled lights (MIS pdfs)
   Vec3f prev_p = Vec3f::Zero();     // that vertex (where it picked its sun photon)
+  float prev_group_total = 0.f;     // and the sum of the photon groups' weights there
+  float group_total = 0.f;          // the same at this vertex, once it has connected
   int panes = 0;  // panes passed straight through (at most kMaxPanes per path)
   for (int bounce = 0, vertex = 0;; ++bounce, ++vertex) {
     const bool from_camera = vertex == 0;  // the camera's own ray (not one through a pane)
@@ -789,18 +783,18 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
           // sunlight through a pane, reached from a vertex that connected to a sun photon:
           // the photon's share of this path's diffuse part (SunPhotons)
           if (photons && !no_mis && straight == 0.f && panes_crossed > 0 &&
-              bounce <= kSunPhotonVertices &&
               static_cast<size_t>(ls.pick) == photons->sun_pick) {
-            const float dist = straight + t;
-            const float p_b = prev_bsdf_pdf * std::fabs(cos_emit) / (dist * dist) *
+            const float p_b = prev_bsdf_pdf * std::fabs(cos_emit) / (t * t) *
                               (ls.pdf * photons->solid_angle);
             // the group that could have sent this light: the outermost pane triangle crossed
             const int portal = outermostPortal(scene.lights(), p, ls.wi);
             const int group = portal >= 0 ? photons->group_of_portal[static_cast<size_t>(portal)]
                                           : -1;
-            const float p_c = group >= 0 ? photons->density(prev_p, static_cast<size_t>(group),
-                                                            std::fabs(ng.dot(ls.wi)))
-                                         : 0.f;
+            const float p_c =
+                group >= 0 ? photons->groupWeight(static_cast<size_t>(group), prev_p) /
+                                 prev_group_total * std::fabs(ng.dot(ls.wi)) *
+                                 photons->groups[static_cast<size_t>(group)].density_scale
+                           : 0.f;
             const Vec3f f_diffuse =
                 lambert ? f_cos : evalBsdfDiffuse(bsdf, wo, frame.toLocal(ls.wi));
             f_weighted -= f_diffuse * (w * (1.f - powerHeuristic(p_b, p_c)));
@@ -820,12 +814,12 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     if (caching.train && ls.pick >= 0)
       caching.train->record(at.p, scene.lights().cacheSlot(static_cast<size_t>(ls.pick)),
                             trained_through);
-    if (photons && !isDelta(bsdf) && bounce < kSunPhotonVertices &&
-        bounce + 1 < ctx.options.max_bounces) {
+    if (photons && !isDelta(bsdf) && bounce + 1 < ctx.options.max_bounces) {
       // connect to one sun photon (SunPhotons): a group by its weight here, a photon of it
       // uniformly; the path x -> y -> sun
       const Eigen::Vector2f u_photon = smp.get2D();
       const float total = photons->groupTotal(p);
+      group_total = total;  // the MIS density at the next vertex reads it
       size_t group = 0;
       float acc = 0.f, w_group = 0.f;
       for (const float target = u_photon.x() * total; group < photons->groups.size(); ++group) {
@@ -923,6 +917,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       straight = 0.f;
       light_at = at;
       prev_p = p;
+      prev_group_total = group_total;
       throughput = throughput.cwiseProduct(sp.albedo);
     } else {
       std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
@@ -944,6 +939,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         straight = 0.f;
         light_at = at;
         prev_p = p;
+        prev_group_total = group_total;
       }
       throughput = throughput.cwiseProduct(bs->weight);
     }

@@ -16,6 +16,7 @@
 #include "render/renderer.h"
 #include "scene/primitives.h"
 #include "emissive_quad.h"
+#include "image_stats.h"
 
 namespace inet {
 namespace {
@@ -170,34 +171,16 @@ TEST(LightCache, CachedPicksKeepTheMeanWithLessNoiseAndTheSameBytesOnAnyThreadCo
     r.render(K, pose, opt, 0, f);
     return f.rgb;
   };
-  auto stats = [](const ImageF& img, const ImageF& ref) {
-    double sum = 0, ref_sum = 0, se = 0;
-    for (size_t i = 0; i < img.data.size(); ++i) {
-      sum += img.data[i];
-      ref_sum += ref.data[i];
-      se += (img.data[i] - ref.data[i]) * (img.data[i] - ref.data[i]);
-    }
-    const double n = static_cast<double>(img.data.size());
-    return std::make_pair(sum / ref_sum, std::sqrt(se / n) / (ref_sum / n));
-  };
   const ImageF reference = render(1024, false, 99);
-  const auto [plain_mean, plain_err] = stats(render(16, false, 1), reference);
-  const auto [cached_mean, cached_err] = stats(render(16, true, 1), reference);
+  const auto [plain_mean, plain_err] = test::againstReference(render(16, false, 1), reference);
+  const auto [cached_mean, cached_err] = test::againstReference(render(16, true, 1), reference);
   EXPECT_NEAR(plain_mean, 1.0, 0.1);
   EXPECT_NEAR(cached_mean, 1.0, 0.03);
   EXPECT_LT(cached_err, 0.7 * plain_err) << "cached " << cached_err << ", plain " << plain_err;
   std::printf("relative RMSE at 16 spp: plain %.4f, cached %.4f\n", plain_err, cached_err);
   // unbiased: many cached samples converge on the plain reference
-  EXPECT_NEAR(stats(render(256, true, 7), reference).first, 1.0, 0.01);
-  ImageF one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = render(4, true, 3);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = render(4, true, 3);
-  }
+  EXPECT_NEAR(test::againstReference(render(256, true, 7), reference).mean_ratio, 1.0, 0.01);
+  const auto [one, two] = test::onOneAndTwoThreads([&] { return render(4, true, 3); });
   EXPECT_EQ(one.data, two.data);
   EXPECT_NE(one.data, render(4, false, 3).data) << "the cache must change the picks";
 }

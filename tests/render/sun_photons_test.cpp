@@ -3,13 +3,12 @@
 // shares), seen toward the walls their patches light. The photons keep the mean of plain path
 // tracing and cut its noise, with the same bytes on any thread count.
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
-
 #include <cmath>
 #include <cstdio>
 
 #include "render/renderer.h"
 #include "scene/primitives.h"
+#include "image_stats.h"
 
 namespace inet {
 namespace {
@@ -67,22 +66,6 @@ Scene sunlitRoom() {
   return s;
 }
 
-struct Stats {
-  double mean_ratio;  ///< image mean / reference mean
-  double rel_rmse;    ///< RMSE / reference mean
-};
-
-Stats compare(const ImageF& img, const ImageF& ref) {
-  double sum = 0, ref_sum = 0, se = 0;
-  for (size_t i = 0; i < img.data.size(); ++i) {
-    sum += img.data[i];
-    ref_sum += ref.data[i];
-    se += (img.data[i] - ref.data[i]) * (img.data[i] - ref.data[i]);
-  }
-  const double n = static_cast<double>(img.data.size());
-  return {sum / ref_sum, std::sqrt(se / n) / (ref_sum / n)};
-}
-
 TEST(SunPhotons, IndirectSunlightKeepsItsMeanWithLessNoiseAndTheSameBytesOnAnyThreadCount) {
   const Scene s = sunlitRoom();
   Renderer r(s);
@@ -103,9 +86,9 @@ TEST(SunPhotons, IndirectSunlightKeepsItsMeanWithLessNoiseAndTheSameBytesOnAnyTh
   };
   for (int bounces : {2, 4}) {
     const ImageF reference = render(2048, false, 99, bounces);
-    const Stats plain = compare(render(16, false, 1, bounces), reference);
-    const Stats photons = compare(render(16, true, 1, bounces), reference);
-    const Stats converged = compare(render(512, true, 7, bounces), reference);
+    const auto plain = test::againstReference(render(16, false, 1, bounces), reference);
+    const auto photons = test::againstReference(render(16, true, 1, bounces), reference);
+    const auto converged = test::againstReference(render(512, true, 7, bounces), reference);
     std::printf("%d bounces, relative RMSE at 16 spp: plain %.4f, sun photons %.4f; mean at 512 "
                 "spp with photons %.4f of the reference\n",
                 bounces, plain.rel_rmse, photons.rel_rmse, converged.mean_ratio);
@@ -113,15 +96,7 @@ TEST(SunPhotons, IndirectSunlightKeepsItsMeanWithLessNoiseAndTheSameBytesOnAnyTh
     EXPECT_NEAR(photons.mean_ratio, 1.0, 0.05) << bounces << " bounces";
     EXPECT_LT(photons.rel_rmse, 0.5 * plain.rel_rmse) << bounces << " bounces";
   }
-  ImageF one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = render(4, true, 3);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = render(4, true, 3);
-  }
+  const auto [one, two] = test::onOneAndTwoThreads([&] { return render(4, true, 3); });
   EXPECT_EQ(one.data, two.data);
   EXPECT_NE(one.data, render(4, false, 3).data) << "the photons must change the estimate";
 }
