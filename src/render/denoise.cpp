@@ -353,7 +353,11 @@ void atrousLevel(const Guide& g, const Signal& in, Signal& out, int step,
     prefiltered = gaussian3x3(g, in.lum);
     for (float& v : scale) v *= 16.f / 6.f;  // 1 / sqrt(36 / 256)
   }
-  TapContext ctx{g, in, step == 1 ? prefiltered.data() : in.lum.data(), scale, opt.sigma_normal,
+  TapContext ctx{g,
+                 in,
+                 step == 1 ? prefiltered.data() : in.lum.data(),
+                 scale,
+                 opt.sigma_normal,
                  1.f / (2.f * opt.sigma_albedo * opt.sigma_albedo)};
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, kRowGrain), [&](const auto& rows) {
     RowSums sums(g.width);
@@ -512,6 +516,80 @@ ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b) {
     float d = 0.5f * (half_a.data[i] - half_b.data[i]);
     out.data[i] = d * d;
   }
+  return out;
+}
+
+std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& values,
+                                          const ImageF& albedo, const ImageF& normal,
+                                          const ImageF& depth, const DenoiseOptions& opt) {
+  INET_CHECK_MSG(!values.empty(), "neighbourhoodVariance: no image");
+  const ImageF& first = *values.front();
+  for (const ImageF* v : values)
+    INET_CHECK_MSG(v->channels == 3 && v->width == first.width && v->height == first.height,
+                   "neighbourhoodVariance: values must be 3-channel images of one size");
+  checkPass(albedo, first, 3, "albedo");
+  checkPass(normal, first, 3, "normal");
+  checkPass(depth, first, 1, "depth");
+  std::vector<ImageF> out(values.size(), ImageF(first.width, first.height, 3));
+  if (first.empty()) return out;
+  const Guide g = buildGuide(first, albedo, normal, depth, opt);
+  const float eps = opt.albedo_epsilon;
+  const float inv_two_sa2 = 1.f / (2.f * opt.sigma_albedo * opt.sigma_albedo);
+  constexpr int kRadius = 3, kTaps = (2 * kRadius + 1) * (2 * kRadius + 1);
+  forEachRow(g.height, [&](int y) {
+    std::array<float, kTaps> weight;
+    std::array<size_t, kTaps> tap;
+    for (int x = 0; x < g.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * g.width + x;
+      if (g.valid[i] == 0.f) continue;
+      // the filter's stops (addTap) without the colour term, once for every image
+      int n = 0;
+      double sw = 0, sw2 = 0;
+      for (int dy = -kRadius; dy <= kRadius; ++dy) {
+        if (y + dy < 0 || y + dy >= g.height) continue;
+        for (int dx = -kRadius; dx <= kRadius; ++dx) {
+          if (x + dx < 0 || x + dx >= g.width) continue;
+          const size_t q = static_cast<size_t>(y + dy) * g.width + (x + dx);
+          if (g.valid[q] == 0.f) continue;
+          const float en =
+              opt.sigma_normal *
+              std::fabs(1.f - (g.nx[i] * g.nx[q] + g.ny[i] * g.ny[q] + g.nz[i] * g.nz[q]));
+          const float ez = std::fabs(g.iz[q] - (g.iz[i] + g.gx[i] * static_cast<float>(dx) +
+                                                g.gy[i] * static_cast<float>(dy))) *
+                           g.z_tol_inv[i];
+          const float da0 = g.ar[i] - g.ar[q], da1 = g.ag[i] - g.ag[q], da2 = g.ab[i] - g.ab[q];
+          const float w = expNegative(en + ez + (da0 * da0 + da1 * da1 + da2 * da2) * inv_two_sa2);
+          weight[n] = w;
+          tap[n++] = q;
+          sw += w;
+          sw2 += static_cast<double>(w) * w;
+        }
+      }
+      // weighted variance, unbiased for weights of effective count sw^2 / sw2
+      const double correction = sw * sw - sw2;
+      const bool alone = correction <= 1e-6 * sw * sw;
+      for (size_t k = 0; k < values.size(); ++k) {
+        const float* v = values[k]->data.data();
+        for (int c = 0; c < 3; ++c) {
+          float& o = out[k].data[3 * i + c];
+          if (alone) {
+            o = v[3 * i + c] * v[3 * i + c];
+            continue;
+          }
+          const float* a = (c == 0 ? g.ar : c == 1 ? g.ag : g.ab).data();
+          double s1 = 0, s2 = 0;
+          for (int t = 0; t < n; ++t) {
+            const double e = v[3 * tap[t] + c] / std::max(a[tap[t]], eps);
+            s1 += weight[t] * e;
+            s2 += weight[t] * e * e;
+          }
+          const double var_e = std::max(0.0, s2 - s1 * s1 / sw) / correction * sw;
+          const double scale = std::max(a[i], eps);
+          o = static_cast<float>(var_e * scale * scale);
+        }
+      }
+    }
+  });
   return out;
 }
 

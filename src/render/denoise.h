@@ -82,9 +82,28 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
 /// It is very noisy; denoise() smooths the variance with a 3x3 Gaussian before using it.
 ImageF varianceFromHalfBuffers(const ImageF& half_a, const ImageF& half_b);
 
+/// Renders below this many samples per pixel estimate their variance from the neighbourhood
+/// (neighbourhoodVariance): one sample has no variance of its own (the sample variance is 0 and
+/// the filter took the image for exact). At 2 spp the pixels' own rough estimate did better in
+/// sequences (docs/rendering.md, "Time to Cycles' 256-spp error").
+constexpr int kNeighbourhoodVarianceBelowSpp = 2;
+
+/// Per-pixel variance of each of `values` (3-channel images) estimated from its 7x7
+/// neighbourhood on the same surface, for renders with too few samples per pixel to give their
+/// own (SVGF's spatial estimate): with weights w_q from the filter's normal, depth-plane and
+/// albedo stops (no colour stop), the weighted variance of the demodulated values
+/// E_q = value_q / max(albedo_q, eps), bias-corrected for the weights' effective count, times
+/// max(albedo_p, eps)^2. The light's own variation over the window counts as noise, so the
+/// estimate errs toward more smoothing. A pixel without a neighbour on its surface gets value^2
+/// (as noisy as it is bright); pixels without a surface get 0. The weights are computed once for
+/// all the images. Same bytes on any thread count.
+std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& values,
+                                          const ImageF& albedo, const ImageF& normal,
+                                          const ImageF& depth, const DenoiseOptions& options);
+
 /// The colour pass in the layers of IntegratorOutputs (render/integrator.h): rgb = emission +
-/// diffuse + rest, for a caller that filters them itself (temporal reuse along a sequence, then the denoiser). Every
-/// image has 3 channels and the frame's size.
+/// diffuse + rest, for a caller that filters them itself (temporal reuse along a sequence, then the
+/// denoiser). Every image has 3 channels and the frame's size.
 struct RgbLayers {
   ImageF emission;          ///< light emitted by the first surface seen (kept out of filters)
   ImageF variance;          ///< variance of the mean of rgb - emission (the denoiser's guide)

@@ -53,6 +53,17 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   };
   allocate(frame.rgb);
   RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
+  // too few samples for a variance of their own: the neighbourhood's (denoise.h)
+  const bool few_samples = options.spp < kNeighbourhoodVarianceBelowSpp;
+  auto reflectedOf = [&](const RgbLayers& l) {  // rgb - emission: what the filters see
+    ImageF r = frame.rgb;
+    for (size_t i = 0; i < r.data.size(); ++i) r.data[i] -= l.emission.data[i];
+    return r;
+  };
+  auto neighbourhood = [&](const std::vector<const ImageF*>& values) {
+    return neighbourhoodVariance(values, frame.albedo, frame.normal, frame.depth_z,
+                                 options.denoise_options);
+  };
   if (layers) {
     for (ImageF* image : {&layers->emission, &layers->variance, &layers->diffuse,
                           &layers->diffuse_variance, &layers->rest_variance, &layers->albedo})
@@ -60,6 +71,15 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     integrator_->render(ctx, frame.rgb,
                         {&layers->emission, &layers->variance, &layers->diffuse,
                          &layers->diffuse_variance, &layers->rest_variance, &layers->albedo});
+    if (few_samples) {
+      const ImageF reflected = reflectedOf(*layers);
+      ImageF rest = reflected;
+      for (size_t i = 0; i < rest.data.size(); ++i) rest.data[i] -= layers->diffuse.data[i];
+      std::vector<ImageF> v = neighbourhood({&reflected, &layers->diffuse, &rest});
+      layers->variance = std::move(v[0]);
+      layers->diffuse_variance = std::move(v[1]);
+      layers->rest_variance = std::move(v[2]);
+    }
   } else if (!denoising) {
     integrator_->render(ctx, frame.rgb, {});
   } else {
@@ -67,6 +87,10 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     allocate(own.emission);
     allocate(own.variance);
     integrator_->render(ctx, frame.rgb, {&own.emission, &own.variance});
+    if (few_samples) {
+      const ImageF reflected = reflectedOf(own);
+      own.variance = std::move(neighbourhood({&reflected})[0]);
+    }
     denoiseRgb(frame, own, options.denoise_options);
   }
   if (has(options.passes, Pass::Rgb)) frame.passes |= static_cast<PassMask>(Pass::Rgb);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <initializer_list>
+#include <vector>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -222,6 +223,46 @@ TEST(Denoise, HalfBufferVarianceDrivesTheFilter) {
   EXPECT_LT(rmse(out, f.clean, everywhere), rmse(f.noisy, f.clean, everywhere) / 5);
 }
 
+TEST(Denoise, NeighbourhoodVarianceMatchesTheNoiseAndStopsAtEdges) {
+  // iid noise of a known level on the synthetic corner: the estimate from the 7x7 neighbourhood
+  // (what a 1-spp render gets instead of its own variance) must find it, per surface.
+  SyntheticFrame f = makeFrame(256, 192, 4);
+  ImageF var = std::move(
+      neighbourhoodVariance({&f.noisy}, f.albedo, f.normal, f.depth, DenoiseOptions{})[0]);
+  // the ratio of the mean estimate to the mean true variance, away from the image border,
+  // over the pixels `in` selects: walls, box, and the 1-px band at the crease and box outline
+  auto ratio = [&](const std::function<bool(int, int)>& in) {
+    double est = 0, truth = 0;
+    for (int y = 3; y < f.noisy.height - 3; ++y)
+      for (int x = 3; x < f.noisy.width - 3; ++x)
+        if (in(x, y))
+          for (int c = 0; c < 3; ++c) {
+            est += var.at(x, y, c);
+            truth += f.variance.at(x, y, c);
+          }
+    return est / truth;
+  };
+  const double all = ratio(everywhere), geo = ratio(geometryEdgeBand(f.normal));
+  std::printf("neighbourhood variance / true: all %.3f, geometry edge band %.3f\n", all, geo);
+  // the smooth light varies a little over 7 px and counts as noise: a few percent high
+  EXPECT_NEAR(all, 1.0, 0.1);
+  // at the crease and the box outline only the pixel's own surface counts (the box is lit
+  // differently: mixing it in would inflate the estimate)
+  EXPECT_NEAR(geo, 1.0, 0.25);
+  // noise-free: zero (up to the light's variation over the window, tiny next to the noise)
+  ImageF clean_var = std::move(
+      neighbourhoodVariance({&f.clean}, f.albedo, f.normal, f.depth, DenoiseOptions{})[0]);
+  EXPECT_LT(meanOf(clean_var), 0.02 * meanOf(f.variance));
+  // with it, the filter removes the noise as well as with the true variance
+  ImageF out = denoise(f.noisy, f.albedo, f.normal, f.depth, &var, DenoiseOptions{});
+  EXPECT_LT(rmse(out, f.clean, everywhere), rmse(f.noisy, f.clean, everywhere) / 5);
+  // several images at once give each the estimate it gets alone
+  std::vector<ImageF> both =
+      neighbourhoodVariance({&f.clean, &f.noisy}, f.albedo, f.normal, f.depth, DenoiseOptions{});
+  EXPECT_EQ(both[0].data, clean_var.data);
+  EXPECT_EQ(both[1].data, var.data);
+}
+
 TEST(Denoise, ConstantImageStaysConstant) {
   const int w = 64, h = 48;
   ImageF rgb(w, h, 3), albedo(w, h, 3), normal(w, h, 3), depth(w, h, 1, 2.5f);
@@ -274,6 +315,11 @@ TEST(Denoise, SameBytesForOneAndTwoThreadsAt640x480) {
     ImageF one = run(1, var), two = run(2, var);
     EXPECT_TRUE(one == two);
   }
+  auto neighbourhood = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return neighbourhoodVariance({&f.noisy}, f.albedo, f.normal, f.depth, DenoiseOptions{})[0];
+  };
+  EXPECT_TRUE(neighbourhood(1) == neighbourhood(2));
 }
 
 TEST(Denoise, PixelsWithoutSurfaceOrFiniteColourPassThroughAndDoNotSpread) {
