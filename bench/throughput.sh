@@ -5,7 +5,7 @@
 # (bench/throughput_error.py: no converged image needed).
 #
 #   bench/throughput.sh DIR [WIDTH=640]
-#   APARTMENTS="3 7 11" SPPS="2 4 8 16" SEQ_SPPS="2 4 8" INET=build/apps/interiornet
+#   APARTMENTS="3 7 11" SPPS="1 2 3 4 8 16" SEQ_SPPS="1 2 4 8" INET=build/apps/interiornet
 #
 # DIR holds the apartments of bench/apartment_compare.sh (DIR/aptN/layout/layout.json and
 # DIR/aptN/camera.json, any width: scaled to WIDTH). Per apartment, into DIR/aptN/throughput/:
@@ -19,7 +19,7 @@
 #                    the whole processes of 12 and 4 frames, whose difference / 8 is the time of
 #                    one frame inside a sequence
 # Bounces: 8 in Cycles, 9 in ours (Cycles counts them after the first hit). About 25 minutes per
-# apartment at 640x480, mostly the references.
+# apartment at 640x480, mostly the references (the defaults give docs/rendering.md's tables).
 set -euo pipefail
 DIR=${1:?apartments folder of bench/apartment_compare.sh}
 W=${2:-640}
@@ -51,7 +51,7 @@ PY
       --spp 256 --threads 2 --max-bounces 9 --light-cache --sun-photons --seed "$seed" \
       --out "$d/ref_$seed.exr" > "$d/ref_$seed.t"
   done
-  for n in ${SPPS:-2 4 8 16}; do
+  for n in ${SPPS:-1 2 3 4 8 16}; do
     [ -f "$d/one_s$n.exr" ] || secs "$INET" render --layout "$layout" --camera "$d/camera.json" \
       --spp "$n" --threads 2 --max-bounces 9 --light-cache --sun-photons --denoise --seed 3 \
       --out "$d/one_s$n.exr" > "$d/one_s$n.t"
@@ -60,7 +60,7 @@ PY
   read -r fx fy cx cy < <(python3 -c "import json, sys; c = json.load(open(sys.argv[1])); \
 print(c['fx'], c['fy'], c['cx'], c['cy'])" "$d/camera.json")
   seqs=()
-  for n in ${SEQ_SPPS:-2 4 8}; do
+  for n in ${SEQ_SPPS:-1 2 4 8}; do
     for frames in 12 4; do
       o="$d/seq_s${n}_f$frames"
       [ -f "$o.t" ] && continue
@@ -77,7 +77,7 @@ print(c['fx'], c['fy'], c['cx'], c['cy'])" "$d/camera.json")
   # the label pass of the last frame: the flat regions
   label=$(find "$d/seq_s${SEQ_SPPS%% *}_f12/" -name '*_nyu.png' | sort | tail -1)
   ones=()
-  for n in ${SPPS:-2 4 8 16}; do ones+=("$d/one_s$n.exr"); done
+  for n in ${SPPS:-1 2 3 4 8 16}; do ones+=("$d/one_s$n.exr"); done
   blender -b --factory-startup -P "$HERE/throughput_error.py" -- \
     --peer "$d/cycles64_0.exr" "$d/cycles64_1.exr" --refs "$d/ref_7.exr" "$d/ref_8.exr" \
     --label "$label" --json "$d/error.json" "${ones[@]}" "${seqs[@]}" 2>/dev/null |
