@@ -25,6 +25,8 @@ DIR=${1:?apartments folder of bench/apartment_compare.sh}
 W=${2:-640}
 H=$((W * 3 / 4))
 INET=${INET:-build/apps/interiornet}
+SPPS=${SPPS:-1 2 3 4 8 16}
+SEQ_SPPS=${SEQ_SPPS:-1 2 4 8}
 HERE=$(cd "$(dirname "$0")" && pwd)
 secs() { /usr/bin/time -f %e "$@" 2>&1 >/dev/null | tail -1; }
 for s in ${APARTMENTS:-3 7 11}; do
@@ -51,7 +53,7 @@ PY
       --spp 256 --threads 2 --max-bounces 9 --light-cache --sun-photons --seed "$seed" \
       --out "$d/ref_$seed.exr" > "$d/ref_$seed.t"
   done
-  for n in ${SPPS:-1 2 3 4 8 16}; do
+  for n in $SPPS; do
     [ -f "$d/one_s$n.exr" ] || secs "$INET" render --layout "$layout" --camera "$d/camera.json" \
       --spp "$n" --threads 2 --max-bounces 9 --light-cache --sun-photons --denoise --seed 3 \
       --out "$d/one_s$n.exr" > "$d/one_s$n.t"
@@ -60,7 +62,7 @@ PY
   read -r fx fy cx cy < <(python3 -c "import json, sys; c = json.load(open(sys.argv[1])); \
 print(c['fx'], c['fy'], c['cx'], c['cy'])" "$d/camera.json")
   seqs=()
-  for n in ${SEQ_SPPS:-1 2 4 8}; do
+  for n in $SEQ_SPPS; do
     for frames in 12 4; do
       o="$d/seq_s${n}_f$frames"
       [ -f "$o.t" ] && continue
@@ -77,7 +79,7 @@ print(c['fx'], c['fy'], c['cx'], c['cy'])" "$d/camera.json")
   # the label pass of the last frame: the flat regions
   label=$(find "$d/seq_s${SEQ_SPPS%% *}_f12/" -name '*_nyu.png' | sort | tail -1)
   ones=()
-  for n in ${SPPS:-1 2 3 4 8 16}; do ones+=("$d/one_s$n.exr"); done
+  for n in $SPPS; do ones+=("$d/one_s$n.exr"); done
   blender -b --factory-startup -P "$HERE/throughput_error.py" -- \
     --peer "$d/cycles64_0.exr" "$d/cycles64_1.exr" --refs "$d/ref_7.exr" "$d/ref_8.exr" \
     --label "$label" --json "$d/error.json" "${ones[@]}" "${seqs[@]}" 2>/dev/null |
