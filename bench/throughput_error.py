@@ -62,9 +62,11 @@ def main():
     regions = {"all": None}
     if a.label:
         regions["flat"] = np.isin(load_labels(a.label), [1, 2, 22])
+    paths = list(a.peer) + list(a.refs) + ([a.peer256] if a.peer256 else []) + a.ours
+    images = {p: rgb(p) for p in paths}  # read once, used as is and despeckled
     out = {}
     for variant, prep in (("", lambda x: x), ("_despeckled", despeckled)):
-        figures(a, regions, prep, variant, out)
+        figures(a, regions, lambda p: prep(images[p]), variant, out)
     print("THR_JSON " + json.dumps(out))
     if a.json:
         with open(a.json, "w") as f:
@@ -77,25 +79,25 @@ def rel(err, scale, mask):
     return float(np.sqrt(max(e.sum(), 0.0) / max(s.sum(), 1e-30)))
 
 
-def figures(a, regions, prep, variant, out):
-    """Adds the figures of every image, each first passed through prep, as keys + variant."""
-    A, B = (prep(rgb(p)) for p in a.peer)
+def figures(a, regions, image, variant, out):
+    """Adds the figures of every image (image(path): the prepared pixels) as keys + variant."""
+    A, B = (image(p) for p in a.peer)
     m = (A + B) / 2
     cyc_scale = m ** 2 - (A - B) ** 2 / 4
     var256 = (A - B) ** 2 / 2 * a.peer_spp / 256
     out["cycles256" + variant] = {k: rel(var256, cyc_scale, r) for k, r in regions.items()}
     if a.peer256:
-        C = prep(rgb(a.peer256))
+        C = image(a.peer256)
         measured = (C - A) ** 2 - (A - B) ** 2 / 2
         out["cycles256_measured" + variant] = {k: rel(measured, cyc_scale, r)
                                                for k, r in regions.items()}
-    R1, R2 = (prep(rgb(p)) for p in a.refs)
+    R1, R2 = (image(p) for p in a.refs)
     R = (R1 + R2) / 2
     ref_var = (R1 - R2) ** 2 / 4
     scale = R ** 2 - ref_var
     out["ours_reference_noise" + variant] = {k: rel(ref_var, scale, r) for k, r in regions.items()}
     for path in a.ours:
-        x = prep(rgb(path))
+        x = image(path)
         if x.shape != R.shape:
             sys.exit(f"throughput_error.py: {path}: {x.shape[1]}x{x.shape[0]}, the references "
                      f"are {R.shape[1]}x{R.shape[0]}")

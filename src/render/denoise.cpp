@@ -177,6 +177,18 @@ Signal demodulate(const ImageF& rgb, const ImageF* variance, const Guide& g, flo
   return s;
 }
 
+/// The exponent of the filter's geometric edge stops between pixel i and its neighbour q at
+/// offset (dx, dy): normal, depth plane and albedo (no colour). addTap computes the same over
+/// whole rows in straight-line code so that it vectorises.
+float geometricStop(const Guide& g, size_t i, size_t q, float dx, float dy, float sigma_normal,
+                    float inv_two_sa2) {
+  const float en =
+      sigma_normal * std::fabs(1.f - (g.nx[i] * g.nx[q] + g.ny[i] * g.ny[q] + g.nz[i] * g.nz[q]));
+  const float ez = std::fabs(g.iz[q] - (g.iz[i] + g.gx[i] * dx + g.gy[i] * dy)) * g.z_tol_inv[i];
+  const float da0 = g.ar[i] - g.ar[q], da1 = g.ag[i] - g.ag[q], da2 = g.ab[i] - g.ab[q];
+  return en + ez + (da0 * da0 + da1 * da1 + da2 * da2) * inv_two_sa2;
+}
+
 /// Residual of the luminance against the mean of its 4 neighbours, if all 4 lie on the same
 /// surface (geometric weight > 1/2); NaN otherwise.
 float residual(const Guide& g, const Signal& s, int x, int y, const DenoiseOptions& opt) {
@@ -185,15 +197,12 @@ float residual(const Guide& g, const Signal& s, int x, int y, const DenoiseOptio
   if (g.valid[i] == 0.f) return NAN;
   const long offs[4] = {-1, 1, -static_cast<long>(g.width), static_cast<long>(g.width)};
   const float dxs[4] = {-1, 1, 0, 0}, dys[4] = {0, 0, -1, 1};
+  const float inv_two_sa2 = 1.f / (2.f * opt.sigma_albedo * opt.sigma_albedo);
   float sum = 0.f;
   for (int k = 0; k < 4; ++k) {
     size_t q = static_cast<size_t>(static_cast<long>(i) + offs[k]);
     if (g.valid[q] == 0.f) return NAN;
-    float dot = g.nx[i] * g.nx[q] + g.ny[i] * g.ny[q] + g.nz[i] * g.nz[q];
-    float pred = g.iz[i] + g.gx[i] * dxs[k] + g.gy[i] * dys[k];
-    float da0 = g.ar[i] - g.ar[q], da1 = g.ag[i] - g.ag[q], da2 = g.ab[i] - g.ab[q];
-    float e = opt.sigma_normal * (1.f - dot) + std::fabs(g.iz[q] - pred) * g.z_tol_inv[i] +
-              (da0 * da0 + da1 * da1 + da2 * da2) / (2.f * opt.sigma_albedo * opt.sigma_albedo);
+    float e = geometricStop(g, i, q, dxs[k], dys[k], opt.sigma_normal, inv_two_sa2);
     if (!(e < 0.6931472f)) return NAN;
     sum += s.lum[q];
   }
@@ -542,7 +551,7 @@ std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& valu
     for (int x = 0; x < g.width; ++x) {
       const size_t i = static_cast<size_t>(y) * g.width + x;
       if (g.valid[i] == 0.f) continue;
-      // the filter's stops (addTap) without the colour term, once for every image
+      // the filter's geometric stops, once for every image
       int n = 0;
       double sw = 0, sw2 = 0;
       for (int dy = -kRadius; dy <= kRadius; ++dy) {
@@ -551,14 +560,9 @@ std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& valu
           if (x + dx < 0 || x + dx >= g.width) continue;
           const size_t q = static_cast<size_t>(y + dy) * g.width + (x + dx);
           if (g.valid[q] == 0.f) continue;
-          const float en =
-              opt.sigma_normal *
-              std::fabs(1.f - (g.nx[i] * g.nx[q] + g.ny[i] * g.ny[q] + g.nz[i] * g.nz[q]));
-          const float ez = std::fabs(g.iz[q] - (g.iz[i] + g.gx[i] * static_cast<float>(dx) +
-                                                g.gy[i] * static_cast<float>(dy))) *
-                           g.z_tol_inv[i];
-          const float da0 = g.ar[i] - g.ar[q], da1 = g.ag[i] - g.ag[q], da2 = g.ab[i] - g.ab[q];
-          const float w = expNegative(en + ez + (da0 * da0 + da1 * da1 + da2 * da2) * inv_two_sa2);
+          const float w = expNegative(geometricStop(g, i, q, static_cast<float>(dx),
+                                                    static_cast<float>(dy), opt.sigma_normal,
+                                                    inv_two_sa2));
           weight[n] = w;
           tap[n++] = q;
           sw += w;
