@@ -145,6 +145,7 @@ void registerDepthNoise(CLI::App& app);
 void registerEvents(CLI::App& app);
 void registerVary(CLI::App& app);
 void registerDenoiser(CLI::App& app);
+void registerAssets(CLI::App& app);
 
 /// Replaces this process with the companion executable `tool` from this binary's folder (the
 /// LibTorch tools: interiornet-train-style, interiornet-train-denoiser), as `tool subcommand

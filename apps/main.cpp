@@ -25,5 +25,6 @@ int main(int argc, char** argv) {
   inet::app::registerEvents(app);
   inet::app::registerVary(app);
   inet::app::registerDenoiser(app);
+  inet::app::registerAssets(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -362,6 +362,62 @@ void savePng(cairo_surface_t* surface, const std::filesystem::path& path) {
 
 }  // namespace
 
+void writeContactSheetPng(const std::filesystem::path& path, const std::vector<SheetTile>& tiles,
+                          int columns, double caption_px) {
+  if (tiles.empty()) throw InputError(path.string(), "", "no pictures for a contact sheet");
+  if (columns < 1) throw InputError(path.string(), "columns", "must be >= 1");
+  int cell_w = 0, cell_h = 0;
+  for (const auto& t : tiles) {
+    if (t.image.channels != 3)
+      throw InputError(path.string(), "", "contact sheet pictures must be RGB (3 channels)");
+    cell_w = std::max(cell_w, t.image.width);
+    cell_h = std::max(cell_h, t.image.height);
+  }
+  const int pad = 4, text_h = static_cast<int>(std::ceil(caption_px * 1.5));
+  const int cols = std::min<int>(columns, static_cast<int>(tiles.size()));
+  const int rows = static_cast<int>((tiles.size() + size_t(cols) - 1) / size_t(cols));
+  const int W = cols * (cell_w + pad) + pad, H = rows * (cell_h + text_h + pad) + pad;
+  auto [surface, cr] = makeCanvas(W, H, path.string());
+  cairo_surface_flush(surface.get());
+  unsigned char* px = cairo_image_surface_get_data(surface.get());
+  const int stride = cairo_image_surface_get_stride(surface.get());
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    const ImageU8& im = tiles[k].image;
+    const int x0 = pad + int(k % size_t(cols)) * (cell_w + pad) + (cell_w - im.width) / 2;
+    const int y0 = pad + int(k / size_t(cols)) * (cell_h + text_h + pad) + (cell_h - im.height);
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) {
+        uint32_t* dst = reinterpret_cast<uint32_t*>(px + (y0 + y) * stride) + (x0 + x);
+        *dst = (uint32_t(im.at(x, y, 0)) << 16) | (uint32_t(im.at(x, y, 1)) << 8) |
+               uint32_t(im.at(x, y, 2));
+      }
+  }
+  cairo_surface_mark_dirty(surface.get());
+  cairo_set_source_rgb(cr.get(), 0.1, 0.1, 0.1);
+  cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr.get(), caption_px);
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    std::string text = tiles[k].caption;
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr.get(), text.c_str(), &ext);
+    while (ext.x_advance > cell_w && text.size() > 4) {  // cut to the cell, byte-safe for UTF-8
+      text.pop_back();
+      while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
+        text.pop_back();
+      const std::string shown = text + "...";
+      cairo_text_extents(cr.get(), shown.c_str(), &ext);
+      if (ext.x_advance <= cell_w) text = shown;
+    }
+    const double x = pad + double(k % size_t(cols)) * (cell_w + pad);
+    const double y = pad + double(k / size_t(cols)) * (cell_h + text_h + pad) + cell_h +
+                     caption_px * 1.15;
+    cairo_move_to(cr.get(), x, y);
+    cairo_show_text(cr.get(), text.c_str());
+  }
+  savePng(surface.get(), path);
+}
+
 Rgb paletteColour(int k) {
   static const Rgb kTab10[10] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
                                  {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/image.h"
+
 namespace inet {
 
 /// An 8-bit sRGB colour.
@@ -93,6 +95,19 @@ std::vector<PlotFrame> writeLinePlotRowPng(const std::filesystem::path& path,
 /// charts, the y range for vertical ones.
 PlotFrame writeBarChartPng(const std::filesystem::path& path, const PlotSpec& spec,
                            const std::vector<Bar>& bars);
+
+/// One picture of a contact sheet: an 8-bit sRGB image (3 channels) and a caption.
+struct SheetTile {
+  ImageU8 image;
+  std::string caption;  ///< drawn under the image, cut with "..." to the tile's width
+};
+
+/// Writes `tiles` in a grid of `columns` (row by row, in order), each image at its own size
+/// in a cell as large as the largest, its caption below in `caption_px` pixel text, on white.
+/// Throws InputError naming the path for no tiles, a tile that is not 3-channel, or an
+/// unwritable file.
+void writeContactSheetPng(const std::filesystem::path& path, const std::vector<SheetTile>& tiles,
+                          int columns, double caption_px = 11.0);
 
 /// Round tick positions covering [lo, hi]: multiples of 1, 2 or 5 x 10^k, about `target` of
 /// them (Heckbert, "Nice numbers for graph labels", Graphics Gems 1990).

@@ -330,9 +330,24 @@ TextureRef textureOf(const aiScene* ai, const aiMaterial* in, aiTextureType type
     path = images[h % images.size()];
   }
   if (!fs::is_regular_file(path, ec)) {
-    ++report.skipped_textures;
-    if (report.missing_textures.size() < 5) report.missing_textures.push_back(written);
-    return {};
+    // Files written on the modeller's machine name textures where they were there
+    // ("C:/Documents and Settings/.../wood.jpg", "/Users/.../TEXTURES/Living room rug.jpg")
+    // and ship them beside the model. Look there by file name, and by the last word of the
+    // name, which is what Sweet Home 3D's OBJ reader takes (its catalogs rely on it).
+    std::vector<fs::path> candidates = {model_dir / fs::path(written).filename()};
+    const size_t blank = written.find_last_of(" \t");
+    if (blank != std::string::npos)
+      candidates.push_back(model_dir / fs::path(written.substr(blank + 1)).filename());
+    const auto found = std::find_if(candidates.begin(), candidates.end(), [&](const fs::path& c) {
+      return !c.filename().empty() && fs::is_regular_file(c, ec);
+    });
+    if (found == candidates.end()) {
+      ++report.skipped_textures;
+      if (report.missing_textures.size() < 5) report.missing_textures.push_back(written);
+      return {};
+    }
+    path = *found;
+    ++report.relocated_textures;
   }
   TextureRef ref;
   ref.path = ref.file = path.lexically_normal().string();
@@ -570,8 +585,15 @@ struct SceneBuilder {
   int materialIndex(unsigned ai_index) {
     int& mat = material_of[ai_index];
     if (mat < 0) {
-      scene.materials.push_back(
-          convertMaterial(ai, ai->mMaterials[ai_index], model_dir, is_obj, material_ids, report));
+      const aiMaterial* in = ai->mMaterials[ai_index];
+      scene.materials.push_back(convertMaterial(ai, in, model_dir, is_obj, material_ids, report));
+      if (opt.phong_materials) {
+        float shininess = 0.f, opacity = 1.f;
+        in->Get(AI_MATKEY_SHININESS, shininess);
+        in->Get(AI_MATKEY_OPACITY, opacity);
+        phongToMaterial(readColor(in, AI_MATKEY_COLOR_SPECULAR, Vec3f::Zero()), shininess,
+                        opacity, scene.materials.back());
+      }
       mat = static_cast<int>(scene.materials.size()) - 1;
     }
     return mat;
@@ -618,6 +640,10 @@ std::string ImportReport::summary(const std::string& default_category) const {
         "{} texture(s) were missing, an empty folder or an unreadable embedded image and were "
         "skipped ({})",
         skipped_textures, listNames(missing_textures)));
+  if (relocated_textures > 0)
+    parts.push_back(fmt::format("{} texture(s) named with a path of another machine were found "
+                                "beside the model by file name",
+                                relocated_textures));
   if (ignored_bump_maps > 0)
     parts.push_back(fmt::format(
         "{} material(s) have a bump (height) map, which is not supported and was ignored",
@@ -670,6 +696,20 @@ std::string ImportReport::summary(const std::string& default_category) const {
   std::string out;
   for (size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
   return out;
+}
+
+void phongToMaterial(const Vec3f& specular, float shininess, float opacity, Material& mat) {
+  if (std::isfinite(opacity) && opacity < 0.99f) {
+    const float d = std::max(0.f, opacity);
+    mat.type = MaterialType::ThinDielectric;
+    mat.transmittance = (Vec3f::Constant(1.f - d) + d * mat.albedo).cwiseMin(1.f);
+    mat.ior = 1.5f;
+  } else if (specular.allFinite() && specular.maxCoeff() > 0.04f && std::isfinite(shininess) &&
+             shininess > 1.f) {
+    mat.type = MaterialType::Plastic;
+    mat.roughness = std::clamp(std::pow(2.f / (shininess + 2.f), 0.25f), 0.05f, 1.f);
+    mat.ior = 1.5f;
+  }
 }
 
 fs::path embeddedTextureCache() {

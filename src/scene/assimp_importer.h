@@ -29,6 +29,10 @@ struct ImportOptions {
   std::string label_map;                       ///< label map CSV path ("" = NYU40 names only)
   std::string default_category = "otherprop";  ///< NYU40 class for names nothing matches
   bool split_shells = true;  ///< split floors and ceilings out of wall objects (room_shell.h)
+  /// Map the Phong parameters of MTL files (specular colour Ks, exponent Ns, opacity d) to our
+  /// families instead of taking every material as Lambertian: see phongToMaterial. Off by
+  /// default (scanned and CAD scenes often carry meaningless Ks); on for catalog models.
+  bool phong_materials = false;
 };
 
 /// What an import did that a user may want to know about, reported once (not per object).
@@ -41,6 +45,9 @@ struct ImportReport {
   size_t flattened_triangles = 0;            ///< triangles whose vertex normals crossed a hard edge
   size_t skipped_textures = 0;  ///< textures missing, empty folders, or unreadable embedded ones
   std::vector<std::string> missing_textures;  ///< their names as written (up to a few)
+  /// Textures not where the material said but found beside the model by file name (paths of
+  /// the modeller's machine: "C:/Documents and Settings/.../wood.jpg")
+  size_t relocated_textures = 0;
   size_t embedded_textures = 0;  ///< embedded images (glTF data URIs, .glb) written to the cache
   size_t ignored_bump_maps = 0;  ///< materials with a bump (height) map, which is not supported
   /// Materials without Ke whose ambient colour Ka exceeds 1 (no reflectance can): taken as
@@ -77,6 +84,14 @@ char detectUpAxis(const Scene& scene, const std::string& path, std::string* why)
 /// $XDG_CACHE_HOME/interiornet/embedded, else ~/.cache/interiornet/embedded, else the temporary
 /// folder. The same bytes give the same file, so reimporting writes nothing.
 std::filesystem::path embeddedTextureCache();
+
+/// What phong_materials does with one material (already holding the diffuse colour and
+/// textures): opacity d < 0.99 makes a thin dielectric pane (glass; transmittance
+/// (1 - d) + d Kd, IOR 1.5); else a specular colour with max(Ks) > 0.04 and Ns > 1 makes a
+/// coated plastic of roughness (2 / (Ns + 2))^(1/4) (the Blinn-Phong exponent's usual GGX
+/// alpha = sqrt(2 / (Ns + 2)), and alpha = roughness^2), clamped to [0.05, 1]; else it stays
+/// Lambertian.
+void phongToMaterial(const Vec3f& specular, float shininess, float opacity, Material& mat);
 
 /// Imports the mesh file `path` as a Scene named after the file's stem. Throws InputError naming
 /// the file when it is missing, unreadable, malformed (Assimp's message), has no triangles, when

@@ -120,6 +120,12 @@ ObjPrepass prepassObj(const std::string& path) {
                        nvt, "texture coordinate", "texture coordinates", path, line_no);
           if (b != std::string::npos) checkIndex(c.substr(b + 1), nvn, "normal", "normals", path, line_no);
         }
+        if (tok.size() < 4) {  // `f a b`: an edge, which Assimp keeps as a malformed face
+          tok[0] = "l";
+          for (size_t k = 1; k < tok.size(); ++k) tok[k] = tok[k].substr(0, tok[k].find('/'));
+          ++out.line_faces;
+          changed = true;
+        }
       } else if (key == "mtllib" && tok.size() > 1) {
         libs.push_back(line.substr(line.find("mtllib") + 6));
         const size_t f = libs.back().find_first_not_of(" \t");
@@ -145,7 +151,8 @@ ObjPrepass prepassObj(const std::string& path) {
       rewritten += line + (cr ? "\r" : "") + eol;
     }
   }
-  if (out.w_values > 0 || out.leading_dots > 0 || out.late_groups > 0) out.text = std::move(rewritten);
+  if (out.w_values > 0 || out.leading_dots > 0 || out.late_groups > 0 || out.line_faces > 0)
+    out.text = std::move(rewritten);
   // material libraries: a name with spaces is one file or several (tinyobjloader reads both)
   std::set<std::string> defined;
   const fs::path dir = fs::path(path).parent_path();

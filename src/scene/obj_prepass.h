@@ -15,7 +15,11 @@
 //    `usemtl NAME` inside a group of another name, where a group NAME is declared later in the
 //    file, starts that group there (a `g NAME` line is put before it) and is counted. A file
 //    that truly puts material M's faces in group G and declares a group M later is read the
-//    same way: rare, and said in the import report.
+//    same way: rare, and said in the import report;
+//  - faces of one or two vertices (`f 12 40`, edges some exporters write among the faces):
+//    Assimp keeps them as faces its own validation then rejects ("is a LINE but
+//    mPrimitiveTypes does not report the LINE flag"), failing the whole file; they are
+//    rewritten as `l` lines, which are dropped like every line.
 // The text is only rewritten when something above needs it; Assimp then reads the rewritten
 // text in place of the file (ObjPrepass::text), and every other file (MTL, textures) as usual.
 #include <string>
@@ -27,6 +31,7 @@ struct ObjPrepass {
   std::string text;      ///< the rewritten file text; empty when the file needs no rewrite
   size_t w_values = 0;   ///< `v` lines whose 4th value (w) was dropped
   size_t leading_dots = 0;                   ///< numbers given a leading 0
+  size_t line_faces = 0;   ///< `f` lines of fewer than 3 vertices rewritten as `l` lines
   size_t late_groups = 0;  ///< `g NAME` lines put before faces whose group is declared later
   std::vector<std::string> missing_mtllibs;  ///< as written in the file
   std::vector<std::string> grey_materials;   ///< `usemtl` names no readable library defines

@@ -247,3 +247,49 @@ TEST(Plot, UnwritablePathIsAnInputErrorAndLeavesNoTemporary) {
 
 }  // namespace
 }  // namespace inet
+
+namespace inet {
+namespace {
+
+TEST(ContactSheet, TilesInRowsWithCaptionsBelow) {
+  test::TempDir dir("sheet");
+  std::vector<SheetTile> tiles;
+  const uint8_t colours[5][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 0}, {0, 0, 0}};
+  for (const auto& c : colours) {
+    SheetTile t;
+    t.image = ImageU8(20, 10, 3);
+    for (int y = 0; y < 10; ++y)
+      for (int x = 0; x < 20; ++x)
+        for (int k = 0; k < 3; ++k) t.image.at(x, y, k) = c[k];
+    t.caption = "a caption far too long for twenty pixels";
+    tiles.push_back(std::move(t));
+  }
+  const auto path = dir / "sheet.png";
+  writeContactSheetPng(path, tiles, 3, 8.0);
+  const ImageU8 im = readPng8(path);
+  // 3 columns x 2 rows of 20 x 10 cells, 4 px apart, 12 px of caption under each
+  EXPECT_EQ(im.width, 3 * 24 + 4);
+  EXPECT_EQ(im.height, 2 * (10 + 12 + 4) + 4);
+  auto px = [&](int x, int y, int k) { return int(im.at(x, y, k)); };
+  EXPECT_EQ(px(4 + 10, 4 + 5, 0), 255);  // tile 0 red
+  EXPECT_EQ(px(4 + 10, 4 + 5, 1), 0);
+  EXPECT_EQ(px(4 + 24 + 10, 4 + 5, 1), 255);  // tile 1 green
+  EXPECT_EQ(px(4 + 48 + 10, 4 + 5, 2), 255);  // tile 2 blue
+  const int row2 = 4 + 26;
+  EXPECT_EQ(px(4 + 10, row2 + 5, 0), 255);  // tile 3 yellow
+  EXPECT_EQ(px(4 + 10, row2 + 5, 1), 255);
+  EXPECT_EQ(px(4 + 24 + 10, row2 + 5, 0), 0);  // tile 4 black
+  EXPECT_EQ(px(4 + 48 + 10, row2 + 5, 0), 255);  // no tile 5: white
+  // some caption ink under tile 0, none to the right of the cell (cut with "...")
+  int ink = 0, spill = 0;
+  for (int y = 4 + 10; y < 4 + 22; ++y) {
+    for (int x = 4; x < 24; ++x) ink += px(x, y, 0) < 128;
+    for (int x = 24; x < 28; ++x) spill += px(x, y, 0) < 128;
+  }
+  EXPECT_GT(ink, 5);
+  EXPECT_EQ(spill, 0);
+  EXPECT_THROW(writeContactSheetPng(dir / "none.png", {}, 3), InputError);
+}
+
+}  // namespace
+}  // namespace inet
