@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "assets/catalog_library.h"
 #include "common.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -119,7 +120,14 @@ struct GenerateLayoutArgs {
   int texture_size = 256;
   bool daylight = true;
   std::string style = "any";
+  std::string furniture;  ///< "" = catalog when the catalogs are installed, else parametric
+  std::string catalog;
   std::string out;
+
+  FurnitureSource furnitureSource() const {
+    if (!furniture.empty()) return parseFurnitureSource(furniture);
+    return catalogsAvailable(catalog) ? FurnitureSource::Catalog : FurnitureSource::Parametric;
+  }
 };
 
 /// One apartment into `dir`: layout.json and light.xml; textures go to `textures` (shared by
@@ -135,6 +143,8 @@ void generateOne(const GenerateLayoutArgs& a, uint64_t seed, const std::filesyst
   opt.daylight = a.daylight;
   opt.random_style = a.style == "random";
   if (!opt.random_style) opt.style = parseDecorStyle(a.style);
+  opt.furniture = a.furnitureSource();
+  opt.catalog_dir = a.catalog;
   Apartment apt = makeApartment(opt, dir, textures);
   saveLayout(apt.scene, (dir / "layout.json").string());
   saveLightXml(apt.scene, (dir / "light.xml").string());
@@ -145,6 +155,8 @@ void generateLayouts(const GenerateLayoutArgs& a) {
   if (a.out.empty()) throw InputError("", "--out", "an output folder is needed");
   if (a.count < 1) throw InputError("", "--count", "must be >= 1");
   if (a.style != "random") parseDecorStyle(a.style);  // a bad --style fails before any work
+  if (a.furnitureSource() != FurnitureSource::Parametric) catalogLibrary(a.catalog);  // and so
+  installCatalogResolver(a.catalog);  // the layouts written are read with the same catalogs
   if (a.count == 1) {
     generateOne(a, a.seed, a.out, fs::path(a.out) / "textures");
     fmt::print("wrote {}/layout.json and light.xml\n", a.out);
@@ -295,6 +307,13 @@ void registerLayout(CLI::App& app) {
                   "decoration: any (every material variant alike, default), modern, scandinavian, "
                   "classic, industrial, or random (one of the four per seed); changes materials "
                   "and wall and floor colours, not what is placed");
+  gen->add_option("--furniture", gen_args->furniture,
+                  "parametric (our furniture library), catalog (real Sweet Home 3D models where "
+                  "one fits the category, parametric otherwise) or mixed (either, per piece); "
+                  "default: catalog when sweethome3d-furniture is installed (docs/assets.md)");
+  gen->add_option("--catalog", gen_args->catalog,
+                  "folder of .sh3f furniture catalogs (default: $INTERIORNET_CATALOG, else "
+                  "/usr/share/sweethome3d/furniture)");
   gen->add_option("--out", gen_args->out, "output folder")->required();
   gen->callback([gen_args] { generateLayouts(*gen_args); });
 

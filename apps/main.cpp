@@ -3,6 +3,8 @@
 #include "cli_main.h"
 #include "common.h"
 
+#include "assets/catalog_library.h"
+
 int main(int argc, char** argv) {
   CLI::App app{
       "interiornet: photo-realistic indoor sequences with exact ground truth (depth, normals, "
@@ -12,6 +14,8 @@ int main(int argc, char** argv) {
       "Run 'interiornet generate' for a 25-frame sequence of the built-in room, or "
       "'interiornet SUBCOMMAND --help' for details."};
   app.require_subcommand(1);
+  // layouts may name Sweet Home 3D catalog models; nothing is read until one does
+  inet::installCatalogResolver();
   inet::app::configureCli(app);
   app.set_version_flag("--version", inet::app::version());
   inet::app::registerGenerate(app);

@@ -18,6 +18,7 @@ struct Rule {
   const char* sh3d;      ///< "" = any category
   const char* category;  ///< ours, "" = none
   const char* nyu40;
+  bool slot = false;  ///< CatalogLabel::slot
 };
 
 // clang-format off
@@ -95,18 +96,19 @@ constexpr Rule kRules[] = {
     {"candle|flashlight", "", "", "otherprop"},
     {"lamp|lantern", "Lights", "table_lamp", "lamp"},
     // living room and office things
-    {"tv remote control|dvd player|video projector", "", "", "otherprop"},
+    {"video projector|surveillance camera|cctv", "", "", "otherprop"},
     {"tv|television", "", "television", "television"},
     {"apple imac", "", "monitor", "television"},
     {"laptop|apple ibook|tablet", "", "laptop", "otherprop"},
     {"white board", "", "whiteboard", "whiteboard"},
     {"oriental rug|round carpet|bathmat|doormat|rug|carpet|tatami", "", "rug", "floor_mat"},
     {"curtain", "", "curtain", "curtain"},
-    {"frame", "", "picture", "picture"},
+    {"frame", "", "", "picture"},  // standing photo frames, not our wall pictures
     {"newspaper", "", "paper", "paper"},
     {"book", "", "books", "books"},
     {"flowers|tulips|white lily|orchids|vase", "", "vase", "otherprop"},
-    {"plant|ficus|bonsai tree|yucca|spathiphyllum|bamboo|cactus|christmas tree", "",
+    {"christmas tree", "", "", "otherprop"},
+    {"plant|ficus|bonsai tree|yucca|spathiphyllum|bamboo|cactus", "",
      "potted_plant", "otherprop"},
     {"cardboard box|open cardboard box|crate|box|trunck", "", "box", "box"},
     {"handbag|briefcase|backpack|suitcase|shopping basket|clothes basket", "", "bag", "bag"},
@@ -120,6 +122,24 @@ constexpr Rule kRules[] = {
     {"broom|electric guitar|umbrella|mower|step ladder|shower head and faucet|pallet", "", "",
      "otherprop"},
     {"iron railing|fence|shipping container", "", "", "otherstructure"},
+    // small things that take the place of our props on supports (CatalogLabel::slot)
+    {"oval plate|plate glass and cutlery|plate glasses and cutlery|plate|sushi tray|tray|apples|"
+     "bread box|bread|butter|birthday cake|cup cake|hamburger|hot dog|steak|roasted chicken|"
+     "french fries|chopping board|large pan",
+     "", "bowl", "otherprop", true},
+    {"teapot|creamer|salt shaker|sugar|old jar|spice tower|milk|yogurt bottle|wine bottle|"
+     "beer bottle|baby bottle|coffee press|espresso kettle|boiler|toaster|coffee maker|mixer|"
+     "blender|kitchen scale|utensils pot|knife stand|oil servers|pottery|medicine bottle|"
+     "medicine box|bottle|flacon|cosmetics pot|soap|sponge|glass",
+     "", "mug", "otherprop", true},
+    {"candle|clock|deer|gift|wood toy|teddy bear|doll|car model|biplane|toy train|rubik s cube|"
+     "chessboard|puzzle|card game|radio|speaker|mp3 base|mp3 station|mini stereo|headphones|"
+     "reflex camera|camera|sunglasses|glasses|keys|wireless phone|phone|mobile phone|"
+     "apple iphone|thermometer|calendar|penbox|stapler|tape measure|tape|scissors|ruler|"
+     "text marker|letter tray|table fan|ashtray|hashtray|comb|brush|lip stick|watch|"
+     "playstation|joystick|tv remote control|dvd player|keyboard|inkjet printer and scanner|"
+     "xylophone|electronic scale|squeezer|sandwich maker|stone grill device|coffee machine",
+     "", "vase", "otherprop", true},
     // people, and their animals (no NYU40 class of their own)
     {"horse|bulldog|dog|cat|siamese cat|chicken|rabbit", "Characters", "", "otherprop"},
     {"boy|girl|male|female|mannequin male|mannequin female", "Characters", "", "person"},
@@ -159,7 +179,8 @@ bool matchesWords(const std::string& name, std::string_view alternatives, std::s
 
 /// Size rules on top of the name: a bed under 1.2 m wide is single, a "table" under 0.7 m
 /// wide a side table and one under 0.6 m tall a coffee table, a table lamp over 0.9 m tall a
-/// floor lamp, a potted plant over 0.6 m tall a floor plant, a stove under 0.5 m tall (a
+/// floor lamp (and one whose bulbs all sit in its lower 40 % a pendant light: a chandelier
+/// named "Lamp"), a potted plant over 0.6 m tall a floor plant, a stove under 0.5 m tall (a
 /// camping or countertop one) a prop.
 void applySizeRules(const CatalogPiece& p, CatalogLabel& l) {
   const double w = p.width_cm, h = p.height_cm;
@@ -167,6 +188,11 @@ void applySizeRules(const CatalogPiece& p, CatalogLabel& l) {
   if (l.category == "dining_table" && w < 70) l.category = "side_table";
   if (l.category == "dining_table" && h < 60) l.category = "coffee_table";
   if (l.category == "table_lamp" && h > 90) l.category = "floor_lamp";
+  // a "lamp" whose bulbs all sit in its lower 40 % hangs from its top (a chandelier)
+  if ((l.category == "table_lamp" || l.category == "floor_lamp") && !p.lights.empty() &&
+      std::all_of(p.lights.begin(), p.lights.end(),
+                  [&](const CatalogLightSource& b) { return b.position_cm.z() < 0.4 * h; }))
+    l.category = "pendant_light";
   if (l.category == "potted_plant" && h > 60) l.category = "plant";
   if (l.category == "stove" && h < 50) {
     l.category.clear();
@@ -185,6 +211,7 @@ CatalogLabel labelCatalogPiece(const CatalogPiece& piece) {
     if (!matchesWords(name, r.words, &hit)) continue;
     label.nyu40 = nyu40FromName(r.nyu40).value_or(40);
     label.category = r.category;
+    label.slot = r.slot;
     label.rule = "name '" + hit + "'";
     applySizeRules(piece, label);
     break;
@@ -202,8 +229,9 @@ CatalogLabel labelCatalogPiece(const CatalogPiece& piece) {
       label.rule = largest > 100 ? "default: larger than 1 m" : "default";
     }
   }
-  label.kind = label.category.empty() ? normalise(piece.name) : label.category;
-  if (label.category.empty()) {  // "Wall flat TV" -> "wall_flat_tv"
+  const bool own_name = label.category.empty() || label.slot;
+  label.kind = own_name ? normalise(piece.name) : label.category;
+  if (own_name) {  // "Wall flat TV" -> "wall_flat_tv"
     std::string k;
     for (char c : label.kind.substr(1, label.kind.size() - 2)) k += c == ' ' ? '_' : c;
     label.kind = k;

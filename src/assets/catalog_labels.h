@@ -13,6 +13,10 @@ struct CatalogLabel {
   int nyu40 = 40;        ///< 1..40
   std::string category;  ///< one of furnitureCategories(), or "" (no parametric equivalent)
   std::string kind;      ///< fine-grained name for Object::kind: `category`, else the name
+  /// The piece fills `category`'s place without being one (a teapot where a mug would stand,
+  /// a toy where a vase would): its kind is its own name, and a furnisher places it by the
+  /// small-prop rule (any small thing on a support) rather than by the category's sizes.
+  bool slot = false;
   std::string rule;      ///< the rule that decided ("name 'sofa'", "default: large"), for docs
 };
 

@@ -172,9 +172,15 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
 
   m.size = Vec3(piece.width_cm, piece.depth_cm, piece.height_cm) / 100.0;
   m.elevation_m = piece.elevation_cm / 100.0;
+  m.drop_on_top_m = piece.drop_on_top_elevation > 0 ? piece.drop_on_top_elevation / 100.0 : -1.0;
   Scene& out = m.parts;
   out.name = piece.id;
   out.materials = raw.materials;
+  for (Material& mat : out.materials) {  // named by piece in layouts (scene/catalog_ref.h)
+    mat.catalog_piece = piece.id;
+    mat.catalog_material = mat.id;
+    mat.id = piece.id + "/" + mat.id;
+  }
   for (const auto& o : raw.objects) {
     const Mesh& src = raw.meshes[size_t(o.mesh)];
     const Mat3 L = A * o.T_world_object.block<3, 3>(0, 0);
@@ -183,7 +189,9 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
     const Mat3 N = degenerate ? Mat3::Identity() : normalMatrix(L);
     Mesh mesh;
     mesh.id = fmt::format("{}#{}", piece.id, out.meshes.size());
-    mesh.source.kind = MeshSource::Kind::Inline;
+    mesh.source.kind = MeshSource::Kind::Catalog;
+    mesh.source.catalog_piece = piece.id;
+    mesh.source.catalog_part = static_cast<int>(out.meshes.size());
     mesh.uvs = src.uvs;
     mesh.triangles = src.triangles;
     mesh.positions.reserve(src.positions.size());

@@ -31,7 +31,9 @@ struct CatalogModel {
   CatalogLabel label;
   /// The parts, one object per (node, material) of the OBJ, each with its own baked mesh and
   /// an identity transform, every object labelled label.nyu40 / label.kind with `part` the
-  /// OBJ's group or material name; lamps' bulbs as point lights (Scene::lights).
+  /// OBJ's group or material name; lamps' bulbs as point lights (Scene::lights). Mesh k has
+  /// source Catalog (piece id, part k) and materials carry catalog_piece / catalog_material
+  /// (ids "<piece id>/<MTL name>"), so a layout names them instead of writing them out.
   Scene parts;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< metres: width x, depth y, height z
   /// The extent of the OBJ after modelRotation, before scaling (in the file's units), whose
@@ -40,6 +42,7 @@ struct CatalogModel {
   /// How unevenly the catalog size stretches the model: the largest per-axis scale over the
   /// smallest (1 = proportions kept). A furnisher can pass over strongly deformed pieces.
   double stretch = 1.0;
+  double drop_on_top_m = -1.0;  ///< where others are put on it (catalog), < 0 = not given
   double elevation_m = 0.0;                ///< default height of its bottom above the floor
   std::vector<Eigen::AlignedBox3d> hulls;  ///< one box per part (model frame)
   double mass_kg = 1.0;   ///< estimate (catalog_model.cpp: density by class x box volume)

@@ -246,6 +246,38 @@ bool readJpegPixels(JpegHandle& h, uint8_t* dst, size_t stride) {
   return true;
 }
 
+/// Compresses `rows` (RGB or grey) into `fp`; false (message in the sink) on a libjpeg error.
+/// As for reading: this function holds no object with a destructor across setjmp.
+bool writeJpegPixels(FILE* fp, const ImageU8& img, int quality, JpegErrorSink& sink) {
+  jpeg_compress_struct cinfo;
+  std::memset(&cinfo, 0, sizeof cinfo);
+  cinfo.err = jpeg_std_error(&sink.mgr);
+  sink.mgr.error_exit = onJpegError;
+  bool created = false;
+  if (setjmp(sink.jump)) {
+    if (created) jpeg_destroy_compress(&cinfo);
+    return false;
+  }
+  jpeg_create_compress(&cinfo);
+  created = true;
+  jpeg_stdio_dest(&cinfo, fp);
+  cinfo.image_width = static_cast<JDIMENSION>(img.width);
+  cinfo.image_height = static_cast<JDIMENSION>(img.height);
+  cinfo.input_components = img.channels;
+  cinfo.in_color_space = img.channels == 1 ? JCS_GRAYSCALE : JCS_RGB;
+  jpeg_set_defaults(&cinfo);
+  jpeg_set_quality(&cinfo, quality, TRUE);
+  jpeg_start_compress(&cinfo, TRUE);
+  const size_t stride = static_cast<size_t>(img.width) * img.channels;
+  while (cinfo.next_scanline < cinfo.image_height) {
+    JSAMPROW row = const_cast<uint8_t*>(img.data.data()) + stride * cinfo.next_scanline;
+    jpeg_write_scanlines(&cinfo, &row, 1);
+  }
+  jpeg_finish_compress(&cinfo);
+  jpeg_destroy_compress(&cinfo);
+  return true;
+}
+
 // ---- EXR -----------------------------------------------------------------------------------
 
 void checkChannelNames(const fs::path& path, const std::vector<std::string>& names) {
@@ -303,6 +335,24 @@ ImageU8 readJpeg8(const fs::path& path) {
   if (!readJpegPixels(h, img.data.data(), static_cast<size_t>(img.width) * img.channels))
     throw InputError(path.string(), "", std::string("bad JPEG: ") + h.sink.message);
   return img;
+}
+
+void writeJpeg(const fs::path& path, const ImageU8& img, int quality) {
+  INET_CHECK(img.data.size() == img.pixelCount() * img.channels);
+  if (img.channels != 1 && img.channels != 3)
+    throw InputError(path.string(), "", "a JPEG holds grey or RGB images (1 or 3 channels)");
+  if (img.width < 1 || img.height < 1) throw InputError(path.string(), "", "image is empty");
+  if (quality < 1 || quality > 100) throw InputError(path.string(), "quality", "must be 1..100");
+  writeFileAtomic(path, [&](const fs::path& tmp) {
+    FILE* fp = std::fopen(tmp.c_str(), "wb");
+    if (!fp)
+      throw InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+    JpegErrorSink sink;
+    const bool ok = writeJpegPixels(fp, img, quality, sink);
+    const bool closed = std::fclose(fp) == 0;
+    if (!ok) throw InputError(path.string(), "", std::string("cannot write JPEG: ") + sink.message);
+    if (!closed) throw InputError(path.string(), "", "cannot write JPEG: disk full?");
+  });
 }
 
 void writeExr(const fs::path& path, const ImageF& img,

@@ -37,6 +37,11 @@ ImageU16 readPng16(const std::filesystem::path& path);
 /// missing, truncated or corrupt file are InputErrors naming the path; libjpeg never exits.
 ImageU8 readJpeg8(const std::filesystem::path& path);
 
+/// Writes a baseline JPEG (1 channel grey, 3 channels RGB, sRGB-encoded values as given) at
+/// `quality` 1..100, atomically. InputError naming the path for other channel counts or an
+/// unwritable file.
+void writeJpeg(const std::filesystem::path& path, const ImageU8& img, int quality = 90);
+
 /// Writes a scanline EXR with one 32-bit FLOAT channel per entry of `channel_names` (their count
 /// must equal img.channels), ZIP compression (16 scanlines per block). EXR stores channels sorted
 /// by name; readExr puts them back in the order asked for. Typical names: {"Z"}, {"R","G","B"}.

@@ -1,8 +1,11 @@
 #include "core/plot.h"
 
+#include "core/image_io.h"
+
 #include <cairo.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -415,7 +418,22 @@ void writeContactSheetPng(const std::filesystem::path& path, const std::vector<S
     cairo_move_to(cr.get(), x, y);
     cairo_show_text(cr.get(), text.c_str());
   }
-  savePng(surface.get(), path);
+  std::string ext = path.extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".jpg" && ext != ".jpeg") {
+    savePng(surface.get(), path);
+    return;
+  }
+  cairo_surface_flush(surface.get());
+  ImageU8 rgb(W, H, 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const uint32_t v = reinterpret_cast<const uint32_t*>(px + y * stride)[x];
+      rgb.at(x, y, 0) = uint8_t(v >> 16);
+      rgb.at(x, y, 1) = uint8_t(v >> 8);
+      rgb.at(x, y, 2) = uint8_t(v);
+    }
+  writeJpeg(path, rgb, 88);
 }
 
 Rgb paletteColour(int k) {

@@ -103,7 +103,8 @@ struct SheetTile {
 };
 
 /// Writes `tiles` in a grid of `columns` (row by row, in order), each image at its own size
-/// in a cell as large as the largest, its caption below in `caption_px` pixel text, on white.
+/// in a cell as large as the largest, its caption below in `caption_px` pixel text, on white;
+/// a JPEG (quality 88) when `path` ends in .jpg or .jpeg, else a PNG.
 /// Throws InputError naming the path for no tiles, a tile that is not 3-channel, or an
 /// unwritable file.
 void writeContactSheetPng(const std::filesystem::path& path, const std::vector<SheetTile>& tiles,

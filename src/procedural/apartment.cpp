@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "assets/catalog_labels.h"
+#include "assets/catalog_library.h"
 #include "core/error.h"
 #include "procedural/furniture.h"
 #include "procedural/procedural_textures.h"
@@ -90,10 +92,12 @@ class Builder {
         layout_dir_(fs::absolute(layout_dir)),
         texture_dir_(fs::absolute(texture_dir)) {
     style_ = opt.style;
+    if (opt.furniture != FurnitureSource::Parametric) library_ = catalogLibrary(opt.catalog_dir);
     if (opt.random_style) {  // its own stream, so the rest of the apartment draws the same numbers
       CounterRng style_rng(opt.seed, RngStream::Layout, 2, 0, 0);
       const auto& all = decorStyles();
-      style_ = all[std::min(all.size() - 1, static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
+      style_ = all[std::min(all.size() - 1,
+                            static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
     }
   }
 
@@ -241,6 +245,7 @@ class Builder {
     phys.mass_kg = static_cast<float>(model.mass_kg);
     phys.friction = static_cast<float>(model.friction);
     phys.movable = model.movable;
+    if (model.catalog) addCatalogParts(*model.catalog, name, instance, room, phys, T_world_model);
     for (const FurniturePart& part : model.parts) {
       const MaterialSpec& spec = model.materials[part.material];
       const int mat = material(spec);
@@ -286,6 +291,7 @@ class Builder {
     PlacedPiece p;
     p.name = name;
     p.category = model.category;
+    if (model.catalog) p.catalog_piece = model.catalog->id;
     p.room = room;
     p.instance = instance;
     for (const auto& h : model.hulls) p.hulls.push_back(transformBox(h, T_world_model));
@@ -293,6 +299,42 @@ class Builder {
     p.flat = model.category == "rug";
     apt_.pieces.push_back(p);
     return static_cast<int>(apt_.pieces.size()) - 1;
+  }
+
+  /// The objects and bulbs of catalog model `c` placed by T_world_model. Its meshes and
+  /// materials enter the scene once per apartment (named by piece in layout.json).
+  void addCatalogParts(const CatalogModel& c, const std::string& name, int instance, int room,
+                       const PhysicsProps& phys, const Mat4& T_world_model) {
+    for (const Object& part : c.parts.objects) {
+      const Mesh& src_mesh = c.parts.meshes[size_t(part.mesh)];
+      const std::string mesh_key = "catalog:" + src_mesh.id;
+      auto mit = meshes_.find(mesh_key);
+      if (mit == meshes_.end()) {
+        apt_.scene.meshes.push_back(src_mesh);
+        mit = meshes_.emplace(mesh_key, int(apt_.scene.meshes.size()) - 1).first;
+      }
+      const Material& src_mat = c.parts.materials[size_t(part.material)];
+      const std::string mat_key = "catalog:" + src_mat.id;
+      auto tit = materials_.find(mat_key);
+      if (tit == materials_.end()) {
+        apt_.scene.materials.push_back(src_mat);
+        tit = materials_.emplace(mat_key, int(apt_.scene.materials.size()) - 1).first;
+      }
+      Object o = Object::make(name, mit->second, tit->second, T_world_model, part.nyu40, instance);
+      o.kind = part.kind;
+      o.part = part.part;
+      o.room = room;
+      o.physics = phys;
+      apt_.scene.objects.push_back(std::move(o));
+    }
+    for (size_t i = 0; i < c.parts.lights.size(); ++i) {
+      Light l = c.parts.lights[i];
+      l.name =
+          c.parts.lights.size() == 1 ? name + "_light" : fmt::format("{}_light_{}", name, i + 1);
+      l.position = (T_world_model * l.position.homogeneous()).head<3>();
+      l.object = name;
+      apt_.scene.lights.push_back(l);
+    }
   }
 
   /// Removes the last piece (its objects and light), restoring the counters.
@@ -345,11 +387,20 @@ class Builder {
     // wall paint: lightness range and warmth (blue share) by style; three draws in every style
     double lo = 0.55, hi = 0.8, blue_lo = 0.85, blue_hi = 0.98;
     switch (style_) {
-      case DecorStyle::Scandinavian: lo = 0.75, hi = 0.85, blue_lo = 0.95, blue_hi = 1.0; break;
-      case DecorStyle::Modern: lo = 0.45, hi = 0.75, blue_lo = 0.97, blue_hi = 1.03; break;
-      case DecorStyle::Classic: lo = 0.55, hi = 0.72, blue_lo = 0.72, blue_hi = 0.85; break;
-      case DecorStyle::Industrial: lo = 0.35, hi = 0.5, blue_lo = 0.95, blue_hi = 1.0; break;
-      case DecorStyle::Any: break;
+      case DecorStyle::Scandinavian:
+        lo = 0.75, hi = 0.85, blue_lo = 0.95, blue_hi = 1.0;
+        break;
+      case DecorStyle::Modern:
+        lo = 0.45, hi = 0.75, blue_lo = 0.97, blue_hi = 1.03;
+        break;
+      case DecorStyle::Classic:
+        lo = 0.55, hi = 0.72, blue_lo = 0.72, blue_hi = 0.85;
+        break;
+      case DecorStyle::Industrial:
+        lo = 0.35, hi = 0.5, blue_lo = 0.95, blue_hi = 1.0;
+        break;
+      case DecorStyle::Any:
+        break;
     }
     const float paint = static_cast<float>(rng_.uniformDouble(lo, hi));
     const MaterialSpec wall =
@@ -590,19 +641,107 @@ class Builder {
   /// Parquet colour by style: light ash, grey oak, dark walnut, smoked oak; oak otherwise.
   Vec3f woodFloorColour() const {
     switch (style_) {
-      case DecorStyle::Scandinavian: return {0.62f, 0.50f, 0.36f};
-      case DecorStyle::Modern: return {0.36f, 0.32f, 0.28f};
-      case DecorStyle::Classic: return {0.22f, 0.12f, 0.06f};
-      case DecorStyle::Industrial: return {0.16f, 0.12f, 0.09f};
-      case DecorStyle::Any: break;
+      case DecorStyle::Scandinavian:
+        return {0.62f, 0.50f, 0.36f};
+      case DecorStyle::Modern:
+        return {0.36f, 0.32f, 0.28f};
+      case DecorStyle::Classic:
+        return {0.22f, 0.12f, 0.06f};
+      case DecorStyle::Industrial:
+        return {0.16f, 0.12f, 0.09f};
+      case DecorStyle::Any:
+        break;
     }
     return {0.38f, 0.24f, 0.13f};
   }
 
-  /// A model of `category` in the apartment's decoration style.
+  /// A model of `category` in the apartment's decoration style: parametric, or a catalog
+  /// model that fits (ApartmentOptions::furniture).
   FurnitureModel make(const std::string& category, FurnitureSizeHint hint = {}) {
     hint.style = style_;
-    return makeFurnitureSized(category, hint, rng_);
+    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
+    fallback_.reset();
+    const bool hinted = hint.width || hint.depth || hint.height;
+    if (!library_ || hinted || opt_.furniture == FurnitureSource::Parametric) return m;
+    // the catalog's own stream: which model is chosen draws nothing from rng_
+    CounterRng pick(opt_.seed, RngStream::Layout, 3, static_cast<uint32_t>(++catalog_draws_), 0);
+    if (opt_.furniture == FurnitureSource::Mixed && pick.uniform() < 0.5f) return m;
+    const auto& fits = catalogFits(category);
+    if (fits.empty()) return m;
+    const auto& chosen =
+        fits[std::min(fits.size() - 1, static_cast<size_t>(pick.uniformDouble() * fits.size()))];
+    fallback_ = m;
+    return fromCatalog(m, chosen);
+  }
+
+  /// Places make(category, hint) with `place`; when a catalog model does not fit where the
+  /// parametric one drawn with it might (a long sofa, a deep bed), tries that one instead.
+  template <class Place>
+  int withFallback(const std::string& category, const FurnitureSizeHint& hint, Place place) {
+    const FurnitureModel m = make(category, hint);
+    const int piece = place(m);
+    if (piece >= 0 || !m.catalog || !fallback_) return piece;
+    const FurnitureModel parametric = std::move(*fallback_);
+    fallback_.reset();
+    return place(parametric);
+  }
+
+  /// The catalog models that may stand for `category`: the fit rule of FurnitureSource.
+  const std::vector<std::shared_ptr<const CatalogModel>>& catalogFits(const std::string& category) {
+    auto it = fits_.find(category);
+    if (it != fits_.end()) return it->second;
+    std::vector<std::shared_ptr<const CatalogModel>> fits;
+    if (category != "door" && category != "window" && category != "curtain") {
+      // the category's parametric size range, from its own stream (the same in every apartment)
+      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = Eigen::Vector3d::Zero();
+      for (uint32_t i = 0; i < 24; ++i) {
+        CounterRng r(0, RngStream::Layout, 4, i, 0);
+        const Eigen::Vector3d sz = makeFurniture(category, r).size;
+        lo = lo.cwiseMin(sz), hi = hi.cwiseMax(sz);
+      }
+      for (const CatalogPiece* p : library_->byCategory(category)) {
+        const Eigen::Vector3d sz = Eigen::Vector3d(p->width_cm, p->depth_cm, p->height_cm) / 100;
+        if (labelCatalogPiece(*p).slot) {  // any small thing that stands on a support
+          if (sz.head<2>().maxCoeff() > 0.45 || sz.z() > 0.5 || sz.minCoeff() < 0.005) continue;
+        } else {
+          // 5 cm of slack, less on thin sides: a 5.5 cm tatami is no 1 cm rug (rugs must stay
+          // under the 2 cm that physics and placement treat as a floor covering)
+          const Eigen::Vector3d slack = (0.5 * hi).cwiseMin(Eigen::Vector3d::Constant(0.05));
+          const Eigen::Vector3d ok_lo = 0.7 * lo - slack;
+          const Eigen::Vector3d ok_hi = 1.4 * hi + slack;
+          if ((sz.array() < ok_lo.array()).any() || (sz.array() > ok_hi.array()).any()) continue;
+          // rugs are walked over and lie under furniture: thinner than the 2 cm that the
+          // physics (variation/rearrange.h) treats as a floor covering
+          if (category == "rug" && sz.z() >= 0.02) continue;
+        }
+        auto model = library_->model(p->id, opt_.catalog_dir, "--furniture catalog");
+        if (model->stretch <= 1.6) fits.push_back(std::move(model));
+      }
+    }
+    return fits_[category] = std::move(fits);
+  }
+
+  /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
+  static FurnitureModel fromCatalog(const FurnitureModel& parametric,
+                                    const std::shared_ptr<const CatalogModel>& c) {
+    FurnitureModel m = parametric;
+    m.catalog = c;
+    m.parts.clear();
+    m.materials.clear();
+    m.light.reset();
+    m.nyu40 = c->label.nyu40;
+    m.size = c->size;
+    m.hulls = c->hulls;
+    m.mass_kg = c->mass_kg;
+    m.friction = c->friction;
+    m.movable = c->movable;
+    if (m.placement == FurnitureModel::Placement::Wall && c->elevation_m > 0)
+      m.mount_height = c->elevation_m;
+    if (m.is_support) {  // the top, or where the catalog says things are dropped on it
+      const double drop = c->drop_on_top_m;
+      m.support_heights = {drop > 0.02 && drop < m.size.z() ? drop : m.size.z()};
+    }
+    return m;
   }
 
   /// Tries to stand `category` against a wall (sides in `sides`, or all); returns the piece
@@ -610,7 +749,11 @@ class Builder {
   int againstWall(RoomState& s, const std::string& category, std::vector<int> sides = {},
                   const FurnitureSizeHint& hint = {}) {
     if (!known(category)) return -1;
-    FurnitureModel m = make(category, hint);
+    return withFallback(category, hint,
+                        [&](const FurnitureModel& m) { return againstWallModel(s, m, sides); });
+  }
+
+  int againstWallModel(RoomState& s, const FurnitureModel& m, std::vector<int> sides) {
     const double w = m.size.x(), d = m.size.y(), h = m.size.z();
     if (s.occupied + w * d > kMaxOccupied * s.interior.volume()) return -1;
     if (sides.empty()) sides = {0, 1, 2, 3};
@@ -653,7 +796,12 @@ class Builder {
   int at(RoomState& s, const std::string& category, const Eigen::Vector2d& c, double yaw,
          const FurnitureSizeHint& hint = {}) {
     if (!known(category)) return -1;
-    FurnitureModel m = make(category, hint);
+    return withFallback(category, hint,
+                        [&](const FurnitureModel& m) { return atModel(s, category, m, c, yaw); });
+  }
+
+  int atModel(RoomState& s, const std::string& category, const FurnitureModel& m,
+              const Eigen::Vector2d& c, double yaw) {
     const bool flat = category == "rug";
     const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
     if (!flat && s.occupied + fp.volume() > kMaxOccupied * s.interior.volume()) return -1;
@@ -734,7 +882,12 @@ class Builder {
     if (support < 0 || !known(category) || !models_.count(support)) return -1;
     const FurnitureModel& sm = models_.at(support);
     if (!sm.is_support || sm.support_heights.empty()) return -1;
-    FurnitureModel m = make(category);
+    return withFallback(category, {},
+                        [&](const FurnitureModel& m) { return onSurfaceModel(support, m, level); });
+  }
+
+  int onSurfaceModel(int support, const FurnitureModel& m, int level) {
+    const FurnitureModel& sm = models_.at(support);
     const double z =
         level < 0 ? sm.support_heights.back()
                   : sm.support_heights[std::min<size_t>(level, sm.support_heights.size() - 1)];
@@ -747,7 +900,8 @@ class Builder {
       const Eigen::Vector2d lo = top.min() + half + Eigen::Vector2d::Constant(margin);
       const Eigen::Vector2d hi = top.max() - half - Eigen::Vector2d::Constant(margin);
       if ((hi - lo).minCoeff() < 0) return -1;
-      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()), rng_.uniformDouble(lo.y(), hi.y()));
+      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()),
+                              rng_.uniformDouble(lo.y(), hi.y()));
       const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
       bool clash = false;
       for (const Box2& o : on_support_[support]) clash = clash || overlaps(fp, o, -0.01);
@@ -772,7 +926,11 @@ class Builder {
   /// wall it shares) or on a free stretch of wall.
   int onWall(RoomState& s, const std::string& category, int below = -1, double height = -1) {
     if (!known(category)) return -1;
-    FurnitureModel m = make(category);
+    return withFallback(category, {},
+                        [&](const FurnitureModel& m) { return onWallModel(s, m, below, height); });
+  }
+
+  int onWallModel(RoomState& s, const FurnitureModel& m, int below, double height) {
     const double z = height >= 0 ? height : m.mount_height;
     const Box2& in = s.interior;
     std::vector<int> sides = {0, 1, 2, 3};
@@ -1087,11 +1245,35 @@ class Builder {
   std::map<int, double> yaw_;
   std::map<int, FurnitureModel> models_;
   std::map<int, std::vector<Box2>> on_support_;
+  std::shared_ptr<const CatalogLibrary> library_;  ///< null: parametric furniture only
+  std::map<std::string, std::vector<std::shared_ptr<const CatalogModel>>> fits_;
+  uint64_t catalog_draws_ = 0;
+  std::optional<FurnitureModel> fallback_;  ///< the parametric model behind make()'s last pick
   int instances_ = 0;
   int sphere_ = -1;
 };
 
 }  // namespace
+
+FurnitureSource parseFurnitureSource(const std::string& name, const std::string& field) {
+  for (FurnitureSource f :
+       {FurnitureSource::Parametric, FurnitureSource::Catalog, FurnitureSource::Mixed})
+    if (name == furnitureSourceName(f)) return f;
+  throw InputError("", field,
+                   fmt::format("unknown furniture source '{}' (parametric, catalog, mixed)", name));
+}
+
+const char* furnitureSourceName(FurnitureSource s) {
+  switch (s) {
+    case FurnitureSource::Parametric:
+      return "parametric";
+    case FurnitureSource::Catalog:
+      return "catalog";
+    case FurnitureSource::Mixed:
+      return "mixed";
+  }
+  return "?";
+}
 
 Apartment makeApartment(const ApartmentOptions& opt, const fs::path& layout_dir,
                         const fs::path& texture_dir) {

@@ -26,6 +26,21 @@
 
 namespace inet {
 
+/// Where furniture comes from: our parametric library (furniture.h), the installed Sweet Home
+/// 3D catalogs (assets/catalog_library.h) for every category a real model fits, or either at
+/// random per piece. Catalog pieces are chosen among the interior models labelled with the
+/// category whose size lies within the category's parametric range (0.7x its smallest to 1.4x
+/// its largest per axis, with 5 cm of slack, or half the largest on thinner sides) and that
+/// the catalog does not stretch by more than
+/// 1.6x; doors, windows and curtains (cut to their openings) stay parametric. Small things
+/// that stand in for a prop (CatalogLabel::slot: a teapot for a mug) fit when no side exceeds
+/// 0.45 m and they are at most 0.5 m tall.
+enum class FurnitureSource { Parametric, Catalog, Mixed };
+/// "parametric", "catalog", "mixed"; InputError(field) otherwise.
+FurnitureSource parseFurnitureSource(const std::string& name,
+                                     const std::string& field = "--furniture");
+const char* furnitureSourceName(FurnitureSource s);
+
 struct ApartmentOptions {
   uint64_t seed = 0;
   int rooms = 0;           ///< 1..16; 0 = drawn from the room-count distribution
@@ -33,12 +48,15 @@ struct ApartmentOptions {
   bool daylight = true;    ///< sky and sun through the windows
   DecorStyle style = DecorStyle::Any;  ///< materials and colours (furniture.h)
   bool random_style = false;  ///< draw one of decorStyles() per seed (overrides `style`)
+  FurnitureSource furniture = FurnitureSource::Parametric;
+  std::string catalog_dir;  ///< catalogs folder for Catalog and Mixed ("" = catalogDir())
 };
 
 /// A placed piece of furniture: what the checks and statistics need.
 struct PlacedPiece {
   std::string name;      ///< instance name in the scene ("sofa_3")
   std::string category;  ///< furniture category
+  std::string catalog_piece;  ///< the catalog model's id, "" = parametric
   int room = -1;
   int instance = 0;
   std::vector<Eigen::AlignedBox3d> hulls;  ///< world-space collision boxes

@@ -16,10 +16,12 @@
 // Physics follows the paper's ranges: mass 0.05..45 kg (heavier real objects are clamped to 45
 // kg and are unmovable), friction 0.08..0.27 from the material of the part touching the support.
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "assets/catalog_model.h"
 #include "core/rng.h"
 #include "procedural/texture_kind.h"
 #include "scene/scene.h"
@@ -88,6 +90,10 @@ struct FurnitureModel {
   bool is_support = false;              ///< others may stand on it (support_heights)
   std::vector<double> support_heights;  ///< heights of horizontal support surfaces (m), rising
   std::optional<LightSpec> light;       ///< lamps: a point or spot light
+  /// A Sweet Home 3D catalog model standing in for the parametric one (apartment.h,
+  /// FurnitureSource): its parts, materials and bulbs replace `parts`, `materials` and `light`;
+  /// size, hulls and physics come from it, placement and support from the category.
+  std::shared_ptr<const CatalogModel> catalog;
 
   /// One line: category, class, size, mass, part and material counts.
   std::string toString() const;

@@ -16,6 +16,7 @@
 #include "scene/assimp_importer.h"
 #include "scene/label_map.h"
 #include "scene/nyu40.h"
+#include "scene/catalog_ref.h"
 #include "scene/primitives.h"
 
 namespace fs = std::filesystem;
@@ -267,14 +268,33 @@ Mesh parseInlineMesh(const Reader& r, const json& j, const std::string& field) {
   return mesh;
 }
 
+/// The resolver for catalog references, or a located error saying how to get one.
+std::shared_ptr<CatalogResolver> needCatalogs(const Reader& r, const std::string& field) {
+  auto resolver = catalogResolver();
+  if (!resolver)
+    r.fail(field, "names a furniture catalog model, but no catalog is available to this program "
+                  "(install sweethome3d-furniture: bash scripts/setup.sh)");
+  return resolver;
+}
+
+Mesh parseCatalogMesh(const Reader& r, const json& j, const std::string& field) {
+  r.object(j, field, {"id", "catalog", "part"}, {});
+  const std::string piece = r.string(j["catalog"], dot(field, "catalog"));
+  const int part = r.integer(j["part"], dot(field, "part"), 0, 1 << 20);
+  return needCatalogs(r, dot(field, "catalog"))->mesh(piece, part, r.file(), dot(field, "part"));
+}
+
 Mesh parseMesh(const Reader& r, const json& j, const std::string& field, const fs::path& base) {
   if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
-  const int kinds = j.contains("primitive") + j.contains("file") + j.contains("vertices");
+  const int kinds = j.contains("primitive") + j.contains("file") + j.contains("vertices") +
+                    j.contains("catalog");
   if (kinds != 1)
-    r.fail(field, "a mesh needs exactly one of \"primitive\", \"file\" or \"vertices\"");
+    r.fail(field,
+           "a mesh needs exactly one of \"primitive\", \"file\", \"vertices\" or \"catalog\"");
   const std::string id = j.contains("id") ? r.string(j["id"], dot(field, "id")) : std::string();
   Mesh mesh = j.contains("primitive") ? parsePrimitive(r, j, field)
               : j.contains("file")    ? parseFileMesh(r, j, field, base)
+              : j.contains("catalog") ? parseCatalogMesh(r, j, field)
                                       : parseInlineMesh(r, j, field);
   mesh.id = id;
   return mesh;
@@ -296,6 +316,15 @@ TextureRef parseTexture(const Reader& r, const json& j, const std::string& field
 Material parseMaterial(const Reader& r, const json& j, const std::string& field,
                        const fs::path& base_dir) {
   if (!j.is_object()) r.fail(field, "expected an object, got " + describe(j));
+  if (j.contains("catalog")) {
+    r.object(j, field, {"id", "catalog", "material"}, {});
+    const std::string piece = r.string(j["catalog"], dot(field, "catalog"));
+    const std::string name = r.string(j["material"], dot(field, "material"));
+    Material m = needCatalogs(r, dot(field, "catalog"))
+                     ->material(piece, name, r.file(), dot(field, "material"));
+    m.id = r.string(j["id"], dot(field, "id"));
+    return m;
+  }
   if (!j.contains("type")) r.fail(dot(field, "type"), "missing required key");
   const std::string type = r.string(j["type"], dot(field, "type"));
   Material m;

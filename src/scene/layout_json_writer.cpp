@@ -86,6 +86,11 @@ ojson lightToJson(const Light& l) {
 ojson materialToJson(const Material& m) {
   ojson j;
   j["id"] = m.id;
+  if (!m.catalog_piece.empty()) {  // named, not written out (scene/catalog_ref.h)
+    j["catalog"] = m.catalog_piece;
+    j["material"] = m.catalog_material;
+    return j;
+  }
   j["type"] = materialTypeName(m.type);
   const MaterialType t = m.type;
   if (t != MaterialType::Dielectric && t != MaterialType::ThinDielectric)
@@ -127,6 +132,10 @@ ojson meshToJson(const Mesh& m, const std::string& where, const std::string& fie
       j["scale"] = jsonNumber(s.scale);
       j["up"] = std::string(1, s.up);
       if (!s.mesh_name.empty()) j["mesh_name"] = s.mesh_name;
+      break;
+    case MeshSource::Kind::Catalog:
+      j["catalog"] = s.catalog_piece;
+      j["part"] = s.catalog_part;
       break;
     case MeshSource::Kind::Inline: {
       if (m.isSphere())

@@ -23,7 +23,7 @@ using Vec2f = Eigen::Vector2f;
 
 /// Where a mesh came from, so a layout file can be written back without inlining geometry.
 struct MeshSource {
-  enum class Kind { Primitive, File, Inline };
+  enum class Kind { Primitive, File, Inline, Catalog };
   Kind kind = Kind::Inline;
   std::string primitive;                 ///< Primitive: "box", "cylinder", "quad", "sphere"
   std::map<std::string, double> params;  ///< Primitive parameters (see primitives.h)
@@ -31,6 +31,8 @@ struct MeshSource {
   double scale = 1.0;                    ///< File: metres per file unit
   char up = 'z';                         ///< File: up axis of the file, 'y' or 'z'
   std::string mesh_name;                 ///< File: pick one mesh by name ("" = all merged)
+  std::string catalog_piece;  ///< Catalog: a furniture catalog piece's id (scene/catalog_ref.h)
+  int catalog_part = 0;       ///< Catalog: which part of the piece's model
 };
 
 /// Geometry in object space: triangles, or one analytic sphere (centre 0, `sphere_radius`).
@@ -78,6 +80,9 @@ struct Material {
                                  ///< metallic-roughness layout); multiplies `roughness`
   TextureRef normal_texture;     ///< tangent-space normal map, linear, OpenGL convention (+Y up)
   Vec2f uv_scale{1.f, 1.f};      ///< texture coordinates are multiplied by this (tiling)
+  /// A material of a furniture catalog piece's model (scene/catalog_ref.h): layout.json names
+  /// it by piece and material instead of writing its values and texture paths. "" = our own.
+  std::string catalog_piece, catalog_material;
   bool isTextured() const {
     return !albedo_texture.empty() || !roughness_texture.empty() || !normal_texture.empty();
   }

@@ -8,7 +8,8 @@
 //  - one rigid body per movable instance: a compound of one convex hull per part (the part
 //    mesh's vertices in world space; analytic spheres as 42 points; shrunk by the 1 mm
 //    collision margin so hull + margin is the true shape; hulls of more than 100 points
-//    reduced with btShapeHull), mass and friction from its PhysicsProps;
+//    reduced to their extreme points along 256 even directions), mass and friction from its
+//    PhysicsProps;
 //  - walls, floors, ceilings, unmovable furniture and objects without PhysicsProps are static
 //    convex hulls; thin floor coverings (rugs: under 2 cm tall, lying on the floor) take no part
 //    (nothing stands "in" them, they never move);
@@ -88,7 +89,7 @@ struct RearrangeLog {
   double max_penetration_m = 0.0;  ///< deepest contact between two bodies at the end
   std::vector<std::string> penetrating;  ///< "a / b: 0.012 m" for contacts deeper than 1 cm
   std::vector<std::string> unsupported;  ///< moved instances with no support contact
-  std::vector<std::string> outside_room;  ///< "name (part): (x, y, z) outside room id"
+  std::vector<std::string> outside_room;  ///< "name (part): (x, y, z) outside room id" (> 1 cm)
   bool ok() const { return penetrating.empty() && unsupported.empty() && outside_room.empty(); }
   /// The log as JSON (options, counts, entries with accel/start/end/distance, checks).
   std::string toJson() const;

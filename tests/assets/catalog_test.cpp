@@ -12,12 +12,15 @@
 #include "../expect_input_error.h"
 #include "../temp_dir.h"
 #include "assets/catalog_labels.h"
+#include "assets/catalog_library.h"
 #include "assets/catalog_model.h"
 #include "assets/furniture_catalog.h"
 #include "assets/java_properties.h"
 #include "assets/zip_archive.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "scene/catalog_ref.h"
+#include "scene/layout_json.h"
 #include "scene/nyu40.h"
 
 namespace inet {
@@ -269,7 +272,11 @@ TEST(FurnitureCatalog, ModelFrameSizeMaterialsAndCache) {
   EXPECT_EQ(m.hulls.size(), m.parts.objects.size());
   // materials: glossy red is a plastic, the texture was found beside the model by file name
   std::map<std::string, const Material*> mats;
-  for (const auto& mat : m.parts.materials) mats[mat.id] = &mat;
+  for (const auto& mat : m.parts.materials) {
+    EXPECT_EQ(mat.catalog_piece, "Test#box");
+    EXPECT_EQ(mat.id, "Test#box/" + mat.catalog_material);
+    mats[mat.catalog_material] = &mat;
+  }
   ASSERT_TRUE(mats.count("red"));
   EXPECT_EQ(mats["red"]->type, MaterialType::Plastic);
   EXPECT_NEAR(mats["red"]->roughness, std::pow(2.0 / 102.0, 0.25), 1e-6);
@@ -326,6 +333,59 @@ TEST(FurnitureCatalog, EntriesThatLeaveTheCacheAreRefused) {
   EXPECT_FALSE(fs::exists(dir / "evil"));
 }
 
+TEST(FurnitureCatalog, LayoutsNameCatalogModelsAndLoadThemBack) {
+  TempDir dir("sh3f_layout");
+  fs::create_directories(dir / "catalogs");
+  writeCatalog(dir, kProperties, "catalogs/test.sh3f");
+  const std::string cat_dir = (dir / "catalogs").string();
+  const auto lib = catalogLibrary(cat_dir);
+  ASSERT_EQ(lib->byCategory("coffee_table").size(), 1u);
+  EXPECT_EQ(lib->byCategory("coffee_table")[0]->id, "Test#box");
+  const auto model = lib->model("Test#box", "", "");
+  EXPECT_EQ(lib->model("Test#box", "", "").get(), model.get());  // loaded once
+  EXPECT_EQ(expectInputError([&] { lib->model("Test#none", "f", "g"); }).field(), "g");
+  // a scene of the model placed twice, written as a layout: meshes and materials by name
+  Scene s = model->parts;
+  s.name = "two_tables";
+  const size_t n = s.objects.size();
+  for (size_t i = 0; i < n; ++i) {
+    Object o = s.objects[i];
+    o.name = "table_2";
+    o.instance = 2;
+    o.T_world_object(0, 3) = 3.0;
+    s.objects.push_back(o);
+  }
+  for (auto& o : s.objects)
+    if (o.name.empty() || o.name == "body" || o.name == "marker") o.name = "table_1";
+  const fs::path path = dir / "layout.json";
+  saveLayout(s, path.string());
+  const std::string text = readTextFile(path);
+  EXPECT_NE(text.find("\"catalog\": \"Test#box\""), std::string::npos);
+  EXPECT_EQ(text.find("vertices"), std::string::npos);  // nothing inlined
+  EXPECT_EQ(text.find("wood.png"), std::string::npos);  // no cache paths
+  installCatalogResolver(cat_dir);
+  const Scene back = loadLayout(path.string());
+  ASSERT_EQ(back.meshes.size(), s.meshes.size());
+  for (size_t i = 0; i < s.meshes.size(); ++i)
+    EXPECT_EQ(back.meshes[i].positions, s.meshes[i].positions);
+  ASSERT_EQ(back.materials.size(), s.materials.size());
+  for (size_t i = 0; i < s.materials.size(); ++i) {
+    EXPECT_EQ(back.materials[i].id, s.materials[i].id);
+    EXPECT_EQ(back.materials[i].type, s.materials[i].type);
+    EXPECT_EQ(back.materials[i].albedo_texture, s.materials[i].albedo_texture);
+  }
+  EXPECT_EQ(layoutToJson(back), text);  // and writes back the same
+  // a part or material the model lacks, and no catalogs at all, are located errors
+  std::string bad = text;
+  bad.replace(bad.find("\"part\": 0"), 10, "\"part\": 9");
+  EXPECT_NE(expectInputError([&] { parseLayout(bad, path.string()); }).field().find("part"),
+            std::string::npos);
+  setCatalogResolver(nullptr);
+  const InputError e = expectInputError([&] { loadLayout(path.string()); });
+  EXPECT_NE(e.field().find("catalog"), std::string::npos);
+  EXPECT_NE(e.problem().find("sweethome3d-furniture"), std::string::npos);
+}
+
 // ---- the label table ----------------------------------------------------------------------
 
 CatalogPiece piece(const std::string& name, const std::string& category, double w, double d,
@@ -354,6 +414,16 @@ TEST(CatalogLabels, NamesCategoriesAndSizes) {
   EXPECT_EQ(label(piece("Toilets unit", "Bathroom", 35, 69, 77)).nyu40, 33);
   EXPECT_EQ(label(piece("Desk lamp", "Lights", 14, 34, 45)).category, "table_lamp");
   EXPECT_EQ(label(piece("Lamp", "Lights", 40, 58, 143)).category, "floor_lamp");
+  CatalogPiece chandelier = piece("Lamp", "Lights", 53, 51, 63);
+  chandelier.lights = {{{5, 20, 21}, {1, 1, 1}, 4}, {{40, 46, 21}, {1, 1, 1}, 4}};
+  EXPECT_EQ(label(chandelier).category, "pendant_light");  // bulbs low: it hangs
+  chandelier.lights[1].position_cm.z() = 50;
+  EXPECT_EQ(label(chandelier).category, "table_lamp");
+  const CatalogLabel teapot = label(piece("Teapot", "Kitchen", 22, 15, 21));
+  EXPECT_EQ(teapot.category, "mug");  // takes a mug's place on a counter
+  EXPECT_TRUE(teapot.slot);
+  EXPECT_EQ(teapot.kind, "teapot");
+  EXPECT_FALSE(label(piece("Sofa", "Living room", 200, 90, 80)).slot);
   const CatalogLabel female = label(piece("Female", "Characters", 47, 37, 170));
   EXPECT_EQ(female.nyu40, 31);  // person
   EXPECT_EQ(female.kind, "female");

@@ -293,3 +293,24 @@ TEST(ContactSheet, TilesInRowsWithCaptionsBelow) {
 
 }  // namespace
 }  // namespace inet
+
+namespace inet {
+namespace {
+
+TEST(ContactSheet, JpegByExtension) {
+  test::TempDir dir("sheet_jpg");
+  SheetTile t;
+  t.image = ImageU8(30, 20, 3, 0);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 30; ++x) t.image.at(x, y, 2) = 255;  // blue
+  t.caption = "blue";
+  writeContactSheetPng(dir / "s.jpg", {t, t}, 2);
+  const ImageU8 im = readJpeg8(dir / "s.jpg");
+  EXPECT_EQ(im.width, 2 * 34 + 4);
+  EXPECT_NEAR(im.at(4 + 15, 4 + 10, 2), 255, 8);  // lossy, but blue
+  EXPECT_NEAR(im.at(4 + 15, 4 + 10, 0), 0, 8);
+  EXPECT_THROW(writeJpeg(dir / "bad.jpg", ImageU8(2, 2, 4)), InputError);
+}
+
+}  // namespace
+}  // namespace inet

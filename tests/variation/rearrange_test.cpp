@@ -2,7 +2,8 @@
 // the floor, a push weaker than friction moves nothing, a vase on a pushed table rides along or
 // lands (never floats), options are validated, the same seed gives identical bytes, and the
 // log's share and accelerations lie in the configured ranges. Built a second time with
-// INET_REARRANGE_ACCEPTANCE: the acceptance over 200 generated apartments (label slow).
+// INET_REARRANGE_ACCEPTANCE: the acceptance over 200 generated apartments (label slow),
+// and with INET_REARRANGE_CATALOG too, over apartments furnished from the Sweet Home 3D catalogs.
 #include "variation/rearrange.h"
 
 #include <gtest/gtest.h>
@@ -10,12 +11,15 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "../temp_dir.h"
 #include "core/error.h"
+#include "assets/catalog_library.h"
 #include "procedural/apartment.h"
 #include "scene/primitives.h"
 
@@ -205,6 +209,9 @@ Apartment apartment(uint64_t seed, const TempDir& dir, int rooms = 0) {
   a.seed = seed;
   a.rooms = rooms;
   a.texture_size = 64;
+#ifdef INET_REARRANGE_CATALOG  // the acceptance again, furnished from the Sweet Home 3D catalogs
+  a.furniture = FurnitureSource::Catalog;
+#endif
   return makeApartment(a, dir.path() / std::to_string(seed), dir.path() / "textures");
 }
 
@@ -310,7 +317,50 @@ WorldPart worldPart(const Scene& s, const Object& o) {
         w.planes.clear();  // not convex: no plane test
         return w;
       }
+  // Only a closed surface bounds a solid: an open one (a catalog model's one-sided screen
+  // quad) passes the test above but its planes bound a half-space, not the part. Closed: every
+  // edge, with vertices welded by position (0.1 mm), is shared by exactly two triangles.
+  std::map<std::array<int64_t, 3>, int> weld;
+  auto key = [&](const Vec3& p) {
+    const std::array<int64_t, 3> k = {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4),
+                                      std::llround(p.z() * 1e4)};
+    return weld.emplace(k, int(weld.size())).first->second;
+  };
+  std::map<std::pair<int, int>, int> edges;
+  for (const Tri& t : m.triangles) {
+    const int a = key(w.v[t[0]]), b = key(w.v[t[1]]), c = key(w.v[t[2]]);
+    for (auto [x, y] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+      if (x != y) ++edges[{std::min(x, y), std::max(x, y)}];
+  }
+  for (const auto& [e, n] : edges)
+    if (n != 2) {
+      w.planes.clear();
+      break;
+    }
   return w;
+}
+
+/// Distance from p to triangle abc (closest point by regions, Ericson, Real-Time Collision
+/// Detection, 5.1.5).
+double distanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
 /// How deep (m) any vertex of `a` lies inside the convex part `b` (0 if none, or b not convex).
@@ -333,6 +383,11 @@ double vertexDepth(const WorldPart& a, const WorldPart& b) {
 // ends interpenetrating (> 1 cm), outside its room or floating (> 1 cm above its support); 95 %
 // of moved objects moved less than 2 m; share and accelerations in the configured ranges.
 TEST(RearrangeAcceptance, TwoHundredApartments) {
+#ifdef INET_REARRANGE_CATALOG
+  if (!catalogsAvailable())
+    GTEST_SKIP() << "no Sweet Home 3D catalogs at " << catalogDir()
+                 << " (install sweethome3d-furniture: bash scripts/setup.sh)";
+#endif
   TempDir dir("rearrange_acc");
   std::vector<double> distances;
   double total_ms = 0, max_ms = 0, max_pen = 0, max_mesh_depth = 0;
@@ -357,7 +412,13 @@ TEST(RearrangeAcceptance, TwoHundredApartments) {
       const Room& r = out.rooms[o.room];
       for (const Vec3f& p : out.meshes[o.mesh].positions) {
         const Vec3 w = (o.T_world_object * p.cast<double>().homogeneous()).head<3>();
-        ASSERT_TRUE(r.contains(w.x(), w.y())) << o.name << " left room " << r.id;
+        // inside, or within 1 cm as for the floor (a piece against a wall touches the room's
+        // outline; its contact may enter it by a fraction of a millimetre)
+        bool near = false;
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int dy = -1; dy <= 1; ++dy)
+            near = near || r.contains(w.x() + 0.01 * dx, w.y() + 0.01 * dy);
+        ASSERT_TRUE(near) << o.name << " left room " << r.id;
         ASSERT_GE(w.z(), r.floor_z - 0.01) << o.name << " sank";
       }
     }
@@ -416,6 +477,24 @@ TEST(RearrangeAcceptance, TwoHundredApartments) {
             break;
           }
       }
+      // or one of its lower points (within 5 cm of its lowest) lies within 1 cm of an upward-
+      // facing triangle of another instance: catalog models rest on surfaces that are not the
+      // top of their part's box (a phone on an oven's sloping door)
+      for (size_t j = 0; j < out.objects.size() && !held; ++j) {
+        if (out.objects[j].instance == instance || parts[j].sphere) continue;
+        const WorldPart& wj = parts[j];
+        for (const Tri& t : out.meshes[out.objects[j].mesh].triangles) {
+          const Vec3 &a = wj.v[t[0]], &b = wj.v[t[1]], &c = wj.v[t[2]];
+          const Vec3 n = (b - a).cross(c - a);
+          if (!(n.norm() > 1e-12) || std::abs(n.normalized().z()) < 0.2) continue;
+          for (const Vec3& p : points)
+            if (p.z() <= low + 0.05 && distanceToTriangle(p, a, b, c) <= 0.01) {
+              held = true;
+              break;
+            }
+          if (held) break;
+        }
+      }
       EXPECT_TRUE(held) << o.name << " floats: its lowest point is at z = " << low;
       ++checked_instances;
     }
@@ -443,7 +522,14 @@ TEST(RearrangeAcceptance, TwoHundredApartments) {
               distances.size(), pushed_moved, pushed, 100 * frac,
               distances[distances.size() / 2], distances.back(), max_pen, kept_static,
               total_ms / 200, max_ms, max_mesh_depth, pairs, convex_pairs, checked_instances);
+#ifdef INET_REARRANGE_CATALOG
+  // Catalog models are mostly open or concave surfaces, which the vertex-inside-convex check
+  // cannot judge; it must still see a quarter of the close pairs (parametric parts, closed
+  // catalog parts). Bullet's own contact depths (deepest contact, above) cover every pair.
+  EXPECT_GT(convex_pairs, pairs / 4) << "the mesh check must see a quarter of the pairs";
+#else
   EXPECT_GT(convex_pairs, pairs / 2) << "the mesh check must see most pairs";
+#endif
   EXPECT_GE(frac, 0.95);
 }
 

@@ -1,0 +1,158 @@
+// Apartments furnished from the installed Sweet Home 3D catalogs (FurnitureSource::Catalog):
+// the layout rules still hold, real models replace parametric ones, the same seed gives the
+// same bytes, layouts name catalog models and load back, and frames render with labels.
+// Skips without Debian's sweethome3d-furniture. INET_CATALOG_APARTMENTS=N runs the issue's
+// acceptance over N seeds (the slow test apartment_catalog_acceptance_test runs 1,000).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+
+#include "../temp_dir.h"
+#include "apartment_checks.h"
+#include "assets/catalog_library.h"
+#include "core/atomic_file.h"
+#include "procedural/apartment.h"
+#include "render/renderer.h"
+#include "scene/layout_json.h"
+#include "scene/nyu40.h"
+
+namespace inet {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+Apartment buildCatalog(uint64_t seed, const fs::path& dir, const fs::path& textures = {},
+                       FurnitureSource source = FurnitureSource::Catalog) {
+  ApartmentOptions opt;
+  opt.seed = seed;
+  opt.texture_size = 64;
+  opt.furniture = source;
+  return makeApartment(opt, dir, textures.empty() ? dir / "textures" : textures);
+}
+
+#define SKIP_WITHOUT_CATALOGS()                                   \
+  if (!catalogsAvailable())                                       \
+  GTEST_SKIP() << "no Sweet Home 3D catalogs at " << catalogDir() \
+               << " (install sweethome3d-furniture: bash scripts/setup.sh)"
+
+#ifndef INET_CATALOG_SEEDS
+#define INET_CATALOG_SEEDS 30
+#endif
+
+int seedsFromEnv(int fallback) {
+  const char* e = std::getenv("INET_CATALOG_APARTMENTS");
+  return e && std::atoi(e) > 0 ? std::atoi(e) : fallback;
+}
+
+/// The acceptance over `n` seeds: every layout rule, and how much of the furniture is real.
+void acceptance(int n) {
+  TempDir dir;
+  std::set<std::string> distinct;
+  size_t pieces = 0, catalog_pieces = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (uint64_t seed = 0; seed < uint64_t(n); ++seed) {
+    SCOPED_TRACE(seed);
+    Apartment apt = buildCatalog(seed, dir.path() / std::to_string(seed), dir.path() / "textures");
+    test::checkApartment(apt);
+    if (::testing::Test::HasFailure()) return;
+    for (const PlacedPiece& p : apt.pieces) {
+      static const std::set<std::string> shell = {"wall",     "floor", "ceiling", "ground",
+                                                  "skirting", "door",  "window",  "curtain"};
+      if (shell.count(p.category)) continue;
+      ++pieces;
+      if (!p.catalog_piece.empty()) ++catalog_pieces, distinct.insert(p.catalog_piece);
+    }
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double share = double(catalog_pieces) / double(std::max<size_t>(pieces, 1));
+  std::printf(
+      "%d apartments: %zu distinct catalog models, %zu of %zu furniture pieces (%.1f %%) "
+      "from the catalogs (doors, windows, curtains not counted), %.1f layouts/s with "
+      "the checks\n",
+      n, distinct.size(), catalog_pieces, pieces, 100 * share, n / s);
+  EXPECT_GE(share, 0.6);
+  if (n >= 1000) {
+    EXPECT_GE(distinct.size(), 300u);
+  }
+}
+
+TEST(CatalogApartment, LayoutRulesHoldAndFurnitureIsReal) {
+  SKIP_WITHOUT_CATALOGS();
+  acceptance(seedsFromEnv(INET_CATALOG_SEEDS));
+}
+
+TEST(CatalogApartment, DeterministicAndLayoutsNameCatalogModels) {
+  SKIP_WITHOUT_CATALOGS();
+  TempDir a, b;
+  Apartment x = buildCatalog(7, a.path()), y = buildCatalog(7, b.path());
+  const std::string path = (a.path() / "layout.json").string();
+  saveLayout(x.scene, path);
+  saveLayout(y.scene, (b.path() / "layout.json").string());
+  const std::string text = readTextFile(path);
+  EXPECT_EQ(text, readTextFile((b.path() / "layout.json").string())) << "same seed, same bytes";
+  EXPECT_NE(text.find("\"catalog\""), std::string::npos);
+  EXPECT_EQ(text.find("/.cache/"), std::string::npos) << "no extracted-cache paths";
+  installCatalogResolver();
+  const Scene loaded = loadLayout(path);
+  EXPECT_EQ(layoutToJson(loaded), text) << "layout.json round-trips exactly";
+  // the parametric apartment of the same seed has the same plan, other furniture
+  TempDir c;
+  Apartment p = buildCatalog(7, c.path(), {}, FurnitureSource::Parametric);
+  EXPECT_EQ(p.scene.rooms.size(), x.scene.rooms.size());
+  EXPECT_NE(layoutToJson(p.scene), text);
+  for (const PlacedPiece& piece : p.pieces) EXPECT_TRUE(piece.catalog_piece.empty());
+  // mixed: some of each
+  TempDir d;
+  Apartment m = buildCatalog(7, d.path(), {}, FurnitureSource::Mixed);
+  size_t real = 0, furniture = 0;
+  for (const PlacedPiece& piece : m.pieces)
+    if (piece.category == "sofa" || piece.category == "dining_chair" ||
+        piece.category == "dining_table" || piece.category == "table_lamp" ||
+        piece.category == "armchair" || piece.category == "mug" || piece.category == "bowl" ||
+        piece.category == "vase" || piece.category == "bed_double" || piece.category == "desk")
+      ++furniture, real += !piece.catalog_piece.empty();
+  EXPECT_GT(real, 0u);
+  EXPECT_LT(real, furniture);
+}
+
+TEST(CatalogApartment, CatalogPiecesKeepTheirClassesAndLampsShine) {
+  SKIP_WITHOUT_CATALOGS();
+  TempDir dir;
+  Apartment apt = buildCatalog(3, dir.path());
+  std::map<std::string, int> instance_class;
+  size_t catalog_objects = 0, catalog_lights = 0;
+  for (const Object& o : apt.scene.objects) {
+    const Mesh& mesh = apt.scene.meshes[size_t(o.mesh)];
+    if (mesh.source.kind != MeshSource::Kind::Catalog) continue;
+    ++catalog_objects;
+    // one class per instance, and a sofa is a sofa
+    auto [it, fresh] = instance_class.emplace(o.name, o.nyu40);
+    EXPECT_EQ(it->second, o.nyu40) << o.name;
+    if (o.name.rfind("sofa_", 0) == 0) {
+      EXPECT_EQ(o.nyu40, *nyu40FromName("sofa"));
+    }
+    ASSERT_TRUE(o.physics) << o.name;
+  }
+  EXPECT_GT(catalog_objects, 20u);
+  for (const Light& l : apt.scene.lights)
+    if (!l.object.empty() && l.name.find("lamp") != std::string::npos) ++catalog_lights;
+  EXPECT_GT(catalog_lights, 0u);
+  // a frame of the whole apartment from above renders catalog pieces into the label pass
+  Renderer r(apt.scene);
+  const auto [lo, hi] = apt.scene.bounds();
+  const Vec3 c = 0.5 * (lo + hi);
+  const Pose T = Pose::lookAt(Vec3(c.x(), c.y() - 0.01, 2.3), Vec3(c.x(), c.y(), 0), Vec3::UnitY());
+  Frame f;
+  r.renderGroundTruth(CameraIntrinsics::centred(160, 120, 40), T,
+                      static_cast<PassMask>(Pass::Label), f);
+  std::set<int> classes(f.label.data.begin(), f.label.data.end());
+  EXPECT_GE(classes.size(), 5u);
+}
+
+}  // namespace
+}  // namespace inet
