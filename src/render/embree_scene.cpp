@@ -372,12 +372,24 @@ void EmbreeScene::buildLights(const Scene& scene) {
   // window panes: skies are also sampled through them (lights.h, sky portals), at their rest
   // placement (a moving pane would only make the portal less apt, never the image biased);
   // SceneLights drops degenerate triangles
+  // A pane is flat and simple: an object of at most kMaxPaneTriangles triangles in one plane.
+  // Glassware, glass table tops and vases of furniture models (thousands of triangles, or
+  // boxes) are no way to the sky, and the portal pick is linear in the portals: a catalog
+  // apartment's glasses made its frames 80x slower.
+  constexpr size_t kMaxPaneTriangles = 64;
   std::vector<PortalTriangle> portals;
   for (const Object& o : scene.objects) {
     const Mesh& mesh = scene.meshes[o.mesh];
-    if (scene.materials[o.material].type != MaterialType::ThinDielectric || mesh.isSphere())
+    if (scene.materials[o.material].type != MaterialType::ThinDielectric || mesh.isSphere() ||
+        mesh.triangles.size() > kMaxPaneTriangles)
       continue;
-    for (const Tri& t : mesh.triangles) portals.push_back(worldTriangle(o, mesh, t));
+    std::vector<PortalTriangle> pane;
+    for (const Tri& t : mesh.triangles) pane.push_back(worldTriangle(o, mesh, t));
+    bool flat = true;
+    for (const PortalTriangle& t : pane)  // every vertex within 1 mm of the first's plane
+      for (const Vec3f& q : {t.p0, Vec3f(t.p0 + t.e1), Vec3f(t.p0 + t.e2)})
+        flat = flat && std::abs(pane.front().normal.dot(q - pane.front().p0)) <= 1e-3f;
+    if (flat) portals.insert(portals.end(), pane.begin(), pane.end());
   }
   lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), std::move(portals));
 }

@@ -8,6 +8,7 @@
 
 #include "core/color.h"
 #include "render/fresnel.h"
+#include "render/embree_scene.h"
 #include "render/lights.h"
 #include "render/renderer.h"
 #include "render/sky.h"
@@ -450,6 +451,42 @@ TEST(SkyPortal, FloorUnderAWindowGetsTheSkyThroughItUnbiased) {
   const double got = floorRadiance(windowedCeiling(L), 0, 0, 1024);
   std::printf("floor under a window: %.6f, expected %.6f\n", got, expected);
   EXPECT_NEAR(got, expected, 0.01 * expected);
+}
+
+}  // namespace
+}  // namespace inet
+
+namespace inet {
+namespace {
+
+// Only flat, simple glass is a way to the sky: a window quad is a portal, a glass box (a table
+// top, a vase's many triangles) is not, however it is labelled.
+TEST(SkyPortal, OnlyFlatPanesArePortals) {
+  Scene s = paneOverFloor();  // a window quad (2 triangles) at z = 1.5
+  const int glass = static_cast<int>(s.materials.size()) - 1;
+  s.meshes.push_back(makePrimitive("box", {}, "test", "mesh"));
+  s.meshes.back().id = "glass_box";
+  Mat4 T = Mat4::Identity();
+  T.diagonal() << 1.2, 0.8, 0.02, 1;
+  T(2, 3) = 0.75;
+  s.objects.push_back(Object::make("glass_table_top", int(s.meshes.size()) - 1, glass, T, 9, 3));
+  Light sky;
+  sky.name = "sky";
+  sky.type = LightType::Sky;
+  s.lights = {sky};
+  const EmbreeScene es(s);
+  EXPECT_EQ(es.lights().portalCount(), 2u);
+  // a flat glass object of too many triangles (a finely tessellated disc) is no pane either
+  Mesh fine;
+  fine.id = "fine";
+  for (int i = 0; i <= 100; ++i) fine.positions.push_back(Vec3f(float(i) / 100, 0, 0));
+  for (int i = 0; i <= 100; ++i) fine.positions.push_back(Vec3f(float(i) / 100, 1, 0));
+  for (uint32_t i = 0; i < 100; ++i) fine.triangles.push_back(Tri(i, i + 1, i + 102));
+  s.meshes.push_back(fine);
+  s.objects.push_back(Object::make("fine_glass", int(s.meshes.size()) - 1, glass,
+                                   Mat4::Identity(), 40, 4));
+  const EmbreeScene es2(s);
+  EXPECT_EQ(es2.lights().portalCount(), 2u);
 }
 
 }  // namespace
