@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "assets/catalog_library.h"
 #include "cli_util.h"
 #include "core/atomic_file.h"
 #include "scene/layout_json.h"
@@ -17,6 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(CliVary, LightingAndRearrangementOfAGeneratedApartment) {
+  // layouts furnished from the Sweet Home 3D catalogs (the default where they are installed)
+  // name catalog models: a program loading them installs the resolver, as interiornet does
+  installCatalogResolver();
   TempDir dir("cli_vary");
   ASSERT_EQ(runInterinet("layout generate --seed 3 --out " + (dir / "apt").string()).exit_code, 0);
   const std::string layout = (dir / "apt" / "layout.json").string();
