@@ -4,7 +4,6 @@
 
 #include <filesystem>
 
-#include "assets/catalog_labels.h"
 #include "core/error.h"
 #include "scene/catalog_ref.h"
 
@@ -15,9 +14,8 @@ CatalogLibrary::CatalogLibrary(const std::string& dir)
   for (const auto& c : catalogs_)
     for (const auto& p : c.pieces) {
       by_id_[p.id] = {&c, &p};
-      if (!p.isInterior()) continue;
-      const CatalogLabel l = labelCatalogPiece(p);
-      if (!l.category.empty()) by_category_[l.category].push_back(&p);
+      const CatalogLabel& l = labels_[p.id] = labelCatalogPiece(p);
+      if (p.isInterior() && !l.category.empty()) by_category_[l.category].push_back(&p);
     }
 }
 
@@ -26,6 +24,12 @@ std::pair<const FurnitureCatalog*, const CatalogPiece*> CatalogLibrary::find(
   auto it = by_id_.find(id);
   return it == by_id_.end() ? std::pair<const FurnitureCatalog*, const CatalogPiece*>{}
                             : it->second;
+}
+
+const CatalogLabel& CatalogLibrary::label(const std::string& id) const {
+  auto it = labels_.find(id);
+  if (it == labels_.end()) throw InputError(dir_, "", fmt::format("no catalog piece '{}'", id));
+  return it->second;
 }
 
 const std::vector<const CatalogPiece*>& CatalogLibrary::byCategory(

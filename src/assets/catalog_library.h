@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "assets/catalog_labels.h"
 #include "assets/catalog_model.h"
 #include "assets/furniture_catalog.h"
 
@@ -23,6 +24,8 @@ class CatalogLibrary {
   const std::vector<FurnitureCatalog>& catalogs() const { return catalogs_; }
   /// The piece `id` and its catalog, or {nullptr, nullptr}.
   std::pair<const FurnitureCatalog*, const CatalogPiece*> find(const std::string& id) const;
+  /// The label of piece `id` (labelCatalogPiece); throws InputError for an unknown id.
+  const CatalogLabel& label(const std::string& id) const;
   /// Interior pieces labelled with our furniture `category` (catalog_labels.h), in catalog
   /// order (file name, then index): the same list on every machine with the same package.
   const std::vector<const CatalogPiece*>& byCategory(const std::string& category) const;
@@ -36,6 +39,7 @@ class CatalogLibrary {
   std::vector<FurnitureCatalog> catalogs_;
   std::map<std::string, std::pair<const FurnitureCatalog*, const CatalogPiece*>> by_id_;
   std::map<std::string, std::vector<const CatalogPiece*>> by_category_;
+  std::map<std::string, CatalogLabel> labels_;
   mutable std::mutex mutex_;
   mutable std::map<std::string, std::shared_ptr<const CatalogModel>> models_;
 };

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 
 #include "assets/zip_archive.h"
+#include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 
@@ -71,11 +71,7 @@ Mat3 normalMatrix(const Mat3& L) {
 }  // namespace
 
 fs::path catalogModelCache() {
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-    return fs::path(x) / "interiornet" / "sh3f";
-  if (const char* h = std::getenv("HOME"); h && *h)
-    return fs::path(h) / ".cache" / "interiornet" / "sh3f";
-  return fs::temp_directory_path() / "interiornet-sh3f";
+  return userCacheDir("sh3f");
 }
 
 fs::path extractCatalogModel(const FurnitureCatalog& catalog, const CatalogPiece& piece,

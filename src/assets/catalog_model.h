@@ -51,9 +51,8 @@ struct CatalogModel {
   ImportReport report;  ///< what reading the OBJ found (missing textures, ...)
 };
 
-/// Where extracted catalog models live: $XDG_CACHE_HOME/interiornet/sh3f, else
-/// ~/.cache/interiornet/sh3f, else the temporary folder's interiornet-sh3f. One folder per
-/// archive content checksum, so a changed archive never reads stale files.
+/// Where extracted catalog models live: userCacheDir("sh3f") (core/atomic_file.h). One folder
+/// per archive content checksum, so a changed archive never reads stale files.
 std::filesystem::path catalogModelCache();
 
 /// Extracts the files of `piece` (its model's folder for a multi-part model, else the model

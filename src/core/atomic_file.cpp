@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <vector>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -61,6 +63,22 @@ int removeStaleTemporaries(const fs::path& dir) {
     }
   }
   return removed;
+}
+
+std::filesystem::path userCacheDir(const std::string& name) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> candidates;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    candidates.push_back(fs::path(xdg) / "interiornet" / name);
+  if (const char* home = std::getenv("HOME"); home && *home)
+    candidates.push_back(fs::path(home) / ".cache" / "interiornet" / name);
+  candidates.push_back(fs::temp_directory_path() / ("interiornet-" + name));
+  for (const fs::path& dir : candidates) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (fs::is_directory(dir, ec) && access(dir.c_str(), W_OK) == 0) return dir;
+  }
+  throw InputError(candidates.back().string(), "", "no writable folder for the " + name + " cache");
 }
 
 std::string readTextFile(const fs::path& path) {

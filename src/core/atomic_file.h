@@ -22,6 +22,11 @@ int removeStaleTemporaries(const std::filesystem::path& dir);
 /// True if `name` looks like one of our temporaries.
 bool isTemporaryName(const std::string& name);
 
+/// A writable folder for our caches, created if needed: $XDG_CACHE_HOME/interiornet/<name>,
+/// else ~/.cache/interiornet/<name>, else <temp>/interiornet-<name>, the first that can be
+/// written. Throws InputError when none can.
+std::filesystem::path userCacheDir(const std::string& name);
+
 /// Reads a whole file; throws InputError naming the file when it cannot be read.
 std::string readTextFile(const std::filesystem::path& path);
 

@@ -5,7 +5,6 @@
 #include <cairo.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -14,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace inet {
 namespace {
@@ -418,8 +418,7 @@ void writeContactSheetPng(const std::filesystem::path& path, const std::vector<S
     cairo_move_to(cr.get(), x, y);
     cairo_show_text(cr.get(), text.c_str());
   }
-  std::string ext = path.extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(path.string());
   if (ext != ".jpg" && ext != ".jpeg") {
     savePng(surface.get(), path);
     return;

@@ -4,12 +4,13 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <queue>
 #include <set>
 
 #include <fmt/format.h>
 
-#include "assets/catalog_labels.h"
 #include "assets/catalog_library.h"
 #include "core/error.h"
 #include "procedural/furniture.h"
@@ -96,8 +97,7 @@ class Builder {
     if (opt.random_style) {  // its own stream, so the rest of the apartment draws the same numbers
       CounterRng style_rng(opt.seed, RngStream::Layout, 2, 0, 0);
       const auto& all = decorStyles();
-      style_ = all[std::min(all.size() - 1,
-                            static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
+      style_ = all[std::min(all.size() - 1, static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
     }
   }
 
@@ -387,20 +387,11 @@ class Builder {
     // wall paint: lightness range and warmth (blue share) by style; three draws in every style
     double lo = 0.55, hi = 0.8, blue_lo = 0.85, blue_hi = 0.98;
     switch (style_) {
-      case DecorStyle::Scandinavian:
-        lo = 0.75, hi = 0.85, blue_lo = 0.95, blue_hi = 1.0;
-        break;
-      case DecorStyle::Modern:
-        lo = 0.45, hi = 0.75, blue_lo = 0.97, blue_hi = 1.03;
-        break;
-      case DecorStyle::Classic:
-        lo = 0.55, hi = 0.72, blue_lo = 0.72, blue_hi = 0.85;
-        break;
-      case DecorStyle::Industrial:
-        lo = 0.35, hi = 0.5, blue_lo = 0.95, blue_hi = 1.0;
-        break;
-      case DecorStyle::Any:
-        break;
+      case DecorStyle::Scandinavian: lo = 0.75, hi = 0.85, blue_lo = 0.95, blue_hi = 1.0; break;
+      case DecorStyle::Modern: lo = 0.45, hi = 0.75, blue_lo = 0.97, blue_hi = 1.03; break;
+      case DecorStyle::Classic: lo = 0.55, hi = 0.72, blue_lo = 0.72, blue_hi = 0.85; break;
+      case DecorStyle::Industrial: lo = 0.35, hi = 0.5, blue_lo = 0.95, blue_hi = 1.0; break;
+      case DecorStyle::Any: break;
     }
     const float paint = static_cast<float>(rng_.uniformDouble(lo, hi));
     const MaterialSpec wall =
@@ -641,84 +632,89 @@ class Builder {
   /// Parquet colour by style: light ash, grey oak, dark walnut, smoked oak; oak otherwise.
   Vec3f woodFloorColour() const {
     switch (style_) {
-      case DecorStyle::Scandinavian:
-        return {0.62f, 0.50f, 0.36f};
-      case DecorStyle::Modern:
-        return {0.36f, 0.32f, 0.28f};
-      case DecorStyle::Classic:
-        return {0.22f, 0.12f, 0.06f};
-      case DecorStyle::Industrial:
-        return {0.16f, 0.12f, 0.09f};
-      case DecorStyle::Any:
-        break;
+      case DecorStyle::Scandinavian: return {0.62f, 0.50f, 0.36f};
+      case DecorStyle::Modern: return {0.36f, 0.32f, 0.28f};
+      case DecorStyle::Classic: return {0.22f, 0.12f, 0.06f};
+      case DecorStyle::Industrial: return {0.16f, 0.12f, 0.09f};
+      case DecorStyle::Any: break;
     }
     return {0.38f, 0.24f, 0.13f};
   }
 
   /// A model of `category` in the apartment's decoration style: parametric, or a catalog
-  /// model that fits (ApartmentOptions::furniture).
-  FurnitureModel make(const std::string& category, FurnitureSizeHint hint = {}) {
+  /// model that fits (ApartmentOptions::furniture), with the parametric one it stands in for.
+  struct Drawn {
+    FurnitureModel model;
+    std::optional<FurnitureModel> parametric;  ///< set when `model` is a catalog model
+  };
+  Drawn draw(const std::string& category, FurnitureSizeHint hint) {
     hint.style = style_;
-    FurnitureModel m = makeFurnitureSized(category, hint, rng_);
-    fallback_.reset();
+    Drawn d{makeFurnitureSized(category, hint, rng_), std::nullopt};
+    // pieces cut to an opening (doors, windows, curtains: the only hinted ones) stay parametric
     const bool hinted = hint.width || hint.depth || hint.height;
-    if (!library_ || hinted || opt_.furniture == FurnitureSource::Parametric) return m;
+    if (!library_ || hinted) return d;
     // the catalog's own stream: which model is chosen draws nothing from rng_
     CounterRng pick(opt_.seed, RngStream::Layout, 3, static_cast<uint32_t>(++catalog_draws_), 0);
-    if (opt_.furniture == FurnitureSource::Mixed && pick.uniform() < 0.5f) return m;
-    const auto& fits = catalogFits(category);
-    if (fits.empty()) return m;
+    if (opt_.furniture == FurnitureSource::Mixed && pick.uniform() < 0.5f) return d;
+    const auto& fits = catalogFits(*library_, category);
+    if (fits.empty()) return d;
     const auto& chosen =
         fits[std::min(fits.size() - 1, static_cast<size_t>(pick.uniformDouble() * fits.size()))];
-    fallback_ = m;
-    return fromCatalog(m, chosen);
+    d.parametric = std::move(d.model);
+    d.model = fromCatalog(*d.parametric, chosen);
+    return d;
+  }
+  FurnitureModel make(const std::string& category, FurnitureSizeHint hint = {}) {
+    return draw(category, hint).model;
   }
 
-  /// Places make(category, hint) with `place`; when a catalog model does not fit where the
+  /// Places a model of `category` with `place`; when a catalog model does not fit where the
   /// parametric one drawn with it might (a long sofa, a deep bed), tries that one instead.
   template <class Place>
   int withFallback(const std::string& category, const FurnitureSizeHint& hint, Place place) {
-    const FurnitureModel m = make(category, hint);
-    const int piece = place(m);
-    if (piece >= 0 || !m.catalog || !fallback_) return piece;
-    const FurnitureModel parametric = std::move(*fallback_);
-    fallback_.reset();
-    return place(parametric);
+    const Drawn d = draw(category, hint);
+    const int piece = place(d.model);
+    return piece >= 0 || !d.parametric ? piece : place(*d.parametric);
   }
 
-  /// The catalog models that may stand for `category`: the fit rule of FurnitureSource.
-  const std::vector<std::shared_ptr<const CatalogModel>>& catalogFits(const std::string& category) {
-    auto it = fits_.find(category);
-    if (it != fits_.end()) return it->second;
-    std::vector<std::shared_ptr<const CatalogModel>> fits;
-    if (category != "door" && category != "window" && category != "curtain") {
-      // the category's parametric size range, from its own stream (the same in every apartment)
-      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = Eigen::Vector3d::Zero();
-      for (uint32_t i = 0; i < 24; ++i) {
-        CounterRng r(0, RngStream::Layout, 4, i, 0);
-        const Eigen::Vector3d sz = makeFurniture(category, r).size;
-        lo = lo.cwiseMin(sz), hi = hi.cwiseMax(sz);
-      }
-      for (const CatalogPiece* p : library_->byCategory(category)) {
-        const Eigen::Vector3d sz = Eigen::Vector3d(p->width_cm, p->depth_cm, p->height_cm) / 100;
-        if (labelCatalogPiece(*p).slot) {  // any small thing that stands on a support
-          if (sz.head<2>().maxCoeff() > 0.45 || sz.z() > 0.5 || sz.minCoeff() < 0.005) continue;
-        } else {
-          // 5 cm of slack, less on thin sides: a 5.5 cm tatami is no 1 cm rug (rugs must stay
-          // under the 2 cm that physics and placement treat as a floor covering)
-          const Eigen::Vector3d slack = (0.5 * hi).cwiseMin(Eigen::Vector3d::Constant(0.05));
-          const Eigen::Vector3d ok_lo = 0.7 * lo - slack;
-          const Eigen::Vector3d ok_hi = 1.4 * hi + slack;
-          if ((sz.array() < ok_lo.array()).any() || (sz.array() > ok_hi.array()).any()) continue;
-          // rugs are walked over and lie under furniture: thinner than the 2 cm that the
-          // physics (variation/rearrange.h) treats as a floor covering
-          if (category == "rug" && sz.z() >= 0.02) continue;
-        }
-        auto model = library_->model(p->id, opt_.catalog_dir, "--furniture catalog");
-        if (model->stretch <= 1.6) fits.push_back(std::move(model));
-      }
+  /// The catalog models of `library` that may stand for `category`: the fit rule of
+  /// FurnitureSource. The same for every apartment, so computed once per process (keyed by the
+  /// library, which catalogLibrary() keeps for the life of the process).
+  static const std::vector<std::shared_ptr<const CatalogModel>>& catalogFits(
+      const CatalogLibrary& library, const std::string& category) {
+    static std::mutex mutex;
+    static std::map<std::pair<const CatalogLibrary*, std::string>,
+                    std::vector<std::shared_ptr<const CatalogModel>>>
+        cache;
+    std::lock_guard lock(mutex);
+    auto it = cache.find({&library, category});
+    if (it != cache.end()) return it->second;
+    // the category's parametric size range, from its own stream
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = Eigen::Vector3d::Zero();
+    for (uint32_t i = 0; i < 24; ++i) {
+      CounterRng r(0, RngStream::Layout, 4, i, 0);
+      const Eigen::Vector3d sz = makeFurniture(category, r).size;
+      lo = lo.cwiseMin(sz), hi = hi.cwiseMax(sz);
     }
-    return fits_[category] = std::move(fits);
+    std::vector<std::shared_ptr<const CatalogModel>> fits;
+    for (const CatalogPiece* p : library.byCategory(category)) {
+      const Eigen::Vector3d sz = Eigen::Vector3d(p->width_cm, p->depth_cm, p->height_cm) / 100;
+      if (library.label(p->id).slot) {  // any small thing that stands on a support
+        if (sz.head<2>().maxCoeff() > 0.45 || sz.z() > 0.5 || sz.minCoeff() < 0.005) continue;
+      } else {
+        // 5 cm of slack, less on thin sides (a 5.5 cm tatami is no 1 cm rug)
+        const Eigen::Vector3d slack = (0.5 * hi).cwiseMin(Eigen::Vector3d::Constant(0.05));
+        if ((sz.array() < (0.7 * lo - slack).array()).any() ||
+            (sz.array() > (1.4 * hi + slack).array()).any())
+          continue;
+        // rugs are walked over and lie under furniture: thinner than the 2 cm that the
+        // physics (variation/rearrange.h) treats as a floor covering
+        if (category == "rug" && sz.z() >= 0.02) continue;
+      }
+      auto model = library.model(p->id, library.dir(), "--furniture catalog");
+      if (model->stretch <= 1.6) fits.push_back(std::move(model));
+    }
+    return cache[{&library, category}] = std::move(fits);
   }
 
   /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
@@ -900,8 +896,7 @@ class Builder {
       const Eigen::Vector2d lo = top.min() + half + Eigen::Vector2d::Constant(margin);
       const Eigen::Vector2d hi = top.max() - half - Eigen::Vector2d::Constant(margin);
       if ((hi - lo).minCoeff() < 0) return -1;
-      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()),
-                              rng_.uniformDouble(lo.y(), hi.y()));
+      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()), rng_.uniformDouble(lo.y(), hi.y()));
       const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
       bool clash = false;
       for (const Box2& o : on_support_[support]) clash = clash || overlaps(fp, o, -0.01);
@@ -1246,9 +1241,7 @@ class Builder {
   std::map<int, FurnitureModel> models_;
   std::map<int, std::vector<Box2>> on_support_;
   std::shared_ptr<const CatalogLibrary> library_;  ///< null: parametric furniture only
-  std::map<std::string, std::vector<std::shared_ptr<const CatalogModel>>> fits_;
   uint64_t catalog_draws_ = 0;
-  std::optional<FurnitureModel> fallback_;  ///< the parametric model behind make()'s last pick
   int instances_ = 0;
   int sphere_ = -1;
 };

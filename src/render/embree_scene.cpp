@@ -371,11 +371,10 @@ void EmbreeScene::buildLights(const Scene& scene) {
   }
   // window panes: skies are also sampled through them (lights.h, sky portals), at their rest
   // placement (a moving pane would only make the portal less apt, never the image biased);
-  // SceneLights drops degenerate triangles
-  // A pane is flat and simple: an object of at most kMaxPaneTriangles triangles in one plane.
-  // Glassware, glass table tops and vases of furniture models (thousands of triangles, or
-  // boxes) are no way to the sky, and the portal pick is linear in the portals: a catalog
-  // apartment's glasses made its frames 80x slower.
+  // SceneLights drops degenerate triangles. A pane is flat and simple: a thin-glass object of
+  // at most kMaxPaneTriangles triangles in one plane. Glassware, glass table tops and vases of
+  // furniture models (thousands of triangles, or boxes) are no way to the sky, and the portal
+  // pick is linear in the portals: a catalog apartment's glasses made its frames 80x slower.
   constexpr size_t kMaxPaneTriangles = 64;
   std::vector<PortalTriangle> portals;
   for (const Object& o : scene.objects) {

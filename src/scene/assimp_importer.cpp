@@ -713,18 +713,7 @@ void phongToMaterial(const Vec3f& specular, float shininess, float opacity, Mate
 }
 
 fs::path embeddedTextureCache() {
-  std::vector<fs::path> candidates;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    candidates.push_back(fs::path(xdg) / "interiornet" / "embedded");
-  if (const char* home = std::getenv("HOME"); home && *home)
-    candidates.push_back(fs::path(home) / ".cache" / "interiornet" / "embedded");
-  candidates.push_back(fs::temp_directory_path() / "interiornet-embedded");
-  for (const fs::path& dir : candidates) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (fs::is_directory(dir, ec) && access(dir.c_str(), W_OK) == 0) return dir;
-  }
-  throw InputError(candidates.back().string(), "", "no writable folder for embedded textures");
+  return userCacheDir("embedded");
 }
 
 char detectUpAxis(const Scene& scene, const std::string& path, std::string* why) {

@@ -163,6 +163,18 @@ bool Room::contains(double x, double y) const {
   return in;
 }
 
+bool Room::contains(double x, double y, double tol) const {
+  if (contains(x, y)) return true;
+  const Eigen::Vector2d p(x, y);
+  for (size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+    const Eigen::Vector2d &a = outline[j], ab = outline[i] - outline[j];
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    if ((a + t * ab - p).norm() <= tol) return true;
+  }
+  return false;
+}
+
 Mat4 Object::transformAt(double t_s) const {
   if (motion.empty()) return T_world_object;
   Pose p;

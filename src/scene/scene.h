@@ -208,6 +208,8 @@ struct Room {
   double area() const;
   /// Is (x, y) inside the outline?
   bool contains(double x, double y) const;
+  /// Inside the outline or at most `tol` metres from it (the distance to its nearest edge).
+  bool contains(double x, double y, double tol) const;
 };
 
 struct Scene {

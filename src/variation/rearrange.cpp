@@ -71,16 +71,6 @@ std::vector<Vec3> objectPoints(const Scene& s, const Object& o, bool enclose = t
   return pts;
 }
 
-/// Inside room `r`'s outline, or within `tol` of it (a wall-side piece rests against the room
-/// barrier, which its contact can enter by a fraction of a millimetre): the same tolerance
-/// as the floor and ceiling get.
-bool nearRoom(const Room& r, double x, double y, double tol) {
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      if (r.contains(x + dx * tol, y + dy * tol)) return true;
-  return false;
-}
-
 /// A convex hull of `pts - origin`, shrunk by the margin (btConvexHullComputer moves every face
 /// inwards; at most a quarter of its distance to the centre, so thin parts keep some body) so
 /// that hull plus margin is the original shape: resting contacts sit at zero gap and nothing
@@ -537,7 +527,9 @@ Scene rearrange(const Scene& in, const RearrangeOptions& opt, RearrangeLog* log)
     std::string outside;
     for (int oi : b.objects)
       for (const Vec3& p : objectPoints(out, out.objects[oi], false))
-        if (outside.empty() && !(nearRoom(r, p.x(), p.y(), kTolerance) &&
+        // a wall-side piece rests against the room barrier, which its contact can enter by a
+        // fraction of a millimetre: the outline gets the tolerance the floor and ceiling get
+        if (outside.empty() && !(r.contains(p.x(), p.y(), kTolerance) &&
                                  p.z() >= r.floor_z - kTolerance &&
                                  p.z() <= r.ceiling_z + kTolerance))
           outside = fmt::format("{} ({}): ({:.3f}, {:.3f}, {:.3f}) outside room {}", b.name,

@@ -706,5 +706,16 @@ TEST(LayoutJson, MissingLayoutFile) {
   }
 }
 
+TEST(Room, ContainsWithinATolerance) {
+  Room r;
+  r.outline = {{0, 0}, {4, 0}, {4, 3}, {0, 3}};
+  EXPECT_TRUE(r.contains(2, 1, 0.01));         // inside
+  EXPECT_TRUE(r.contains(4.009, 1, 0.01));     // 9 mm past an edge
+  EXPECT_FALSE(r.contains(4.011, 1, 0.01));    // 11 mm past it
+  EXPECT_TRUE(r.contains(4.006, 3.006, 0.01));   // 8.5 mm from a corner
+  EXPECT_FALSE(r.contains(4.008, 3.008, 0.01));  // 11.3 mm from it
+  EXPECT_FALSE(r.contains(4.009, 1, 0.0));
+}
+
 }  // namespace
 }  // namespace inet
