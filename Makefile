@@ -35,8 +35,8 @@ fuzz:
 	@bash scripts/setup.sh fuzz
 	@cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DINET_FUZZ=ON -DINET_BUILD_TESTS=OFF >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json fuzz_sensors fuzz_mitsuba fuzz_light_xml fuzz_denoiser_weights fuzz_catalog
-	@for t in layout trajectory camera_json sensors mitsuba light_xml denoiser_weights catalog; do \
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_layout fuzz_trajectory fuzz_camera_json fuzz_sensors fuzz_mitsuba fuzz_light_xml fuzz_denoiser_weights fuzz_catalog fuzz_sh3d
+	@for t in layout trajectory camera_json sensors mitsuba light_xml denoiser_weights catalog sh3d; do \
 	  mkdir -p build-fuzz/corpus/$$t && cp -n fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ ; \
 	  if [ $$t = trajectory ] && [ -d ../shared/data/trajectories ]; then \
 	    cp -n ../shared/data/trajectories/*.txt ../shared/data/trajectories/*.csv build-fuzz/corpus/$$t/ ; \

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "assets/catalog_library.h"
+#include "assets/sh3d_import.h"
 #include "common.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -65,14 +66,24 @@ void importScene(Scene s, const std::string& out) {
     throw InputError(out, "--out", "cannot create the folder " + dir.string());
   // images the file embedded (glTF data URIs, .glb) live in a cache: a copy goes next to the
   // layout, so the folder holds everything it needs
+  // (and textures importers extract from archives, .sh3d homes, to the user cache)
   const fs::path cache = fs::absolute(embeddedTextureCache());
+  const std::string user_cache = fs::absolute(userCacheDir("")).lexically_normal().string();
   for (Material& m : s.materials)
     for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture}) {
       if (t->empty()) continue;
       const fs::path p = fs::absolute(t->path);
-      if (p.parent_path() == cache) {
+      const bool cached = p.lexically_normal().string().rfind(user_cache, 0) == 0;
+      if (p.parent_path() == cache || cached) {
         fs::create_directories(dir / "textures", ec);
-        const fs::path copy = dir / "textures" / p.filename();
+        // cached files from different archives may share a name: the parent folder's name
+        // (a content checksum or model folder) keeps them apart
+        const fs::path copy =
+            dir / "textures" /
+            (p.parent_path() == cache ? p.filename().string()
+                                      : fmt::format("{:016x}_{}", std::hash<std::string>{}(
+                                                                      p.parent_path().string()),
+                                                    p.filename().string()));
         if (!fs::exists(copy, ec)) fs::copy_file(p, copy, ec);
         if (ec) throw InputError(copy.string(), "--out", "cannot write: " + ec.message());
         t->path = copy.string();
@@ -111,6 +122,36 @@ void importMitsuba(const SceneArgs& args, const std::string& out) {
   writeTextAtomic(camera, mitsubaCameraJson(*ms.sensor, fs::path(args.path).filename().string()));
   fmt::print("wrote {} (the scene's sensor: {}x{}, fx {:.2f})\n", camera.string(),
              ms.sensor->width, ms.sensor->height, ms.sensor->fx);
+}
+
+/// A Sweet Home 3D home to `out`, and its views (video path, else stored points of view, else
+/// the observer) to cameras.tum beside it: one pose a second, for generate --trajectory.
+void importHome(const SceneArgs& args, const std::string& out) {
+  namespace fs = std::filesystem;
+  const Sh3dHome home = readSh3dHome(args.path);
+  Sh3dImportReport report;
+  Scene s = sh3dToScene(home, Sh3dImportOptions{}, &report);
+  const std::string warn = report.summary();
+  if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", args.path.c_str(), warn.c_str());
+  if (!args.lights.empty()) applyLightSetup(s, loadLightXml(args.lights), args.lights);
+  fmt::print("{}: {} level(s), {} wall(s) with {} door/window cut-out(s), {} room(s), {} "
+             "piece(s) ({} doors and windows), {} lamp bulb(s)\n",
+             args.path, report.levels, report.walls, report.holes, report.rooms, report.pieces,
+             report.doors_windows, report.lights);
+  importScene(std::move(s), out);
+  const std::vector<Sh3dView> views = sh3dViews(home);
+  if (views.empty()) return;
+  std::string tum = fmt::format("# {} views of {} (name per line below), T_world_camera\n",
+                                views.size(), fs::path(args.path).filename().string());
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Pose& T = views[i].T_world_camera;
+    tum += fmt::format("# {}: {}\n{:.6f} {:.6f} {:.6f} {:.6f} {:.9f} {:.9f} {:.9f} {:.9f}\n", i,
+                       views[i].name, double(i), T.t.x(), T.t.y(), T.t.z(), T.q.x(), T.q.y(),
+                       T.q.z(), T.q.w());
+  }
+  const fs::path cams = fs::path(out).parent_path() / "cameras.tum";
+  writeTextAtomic(cams, tum);
+  fmt::print("wrote {} ({} view(s))\n", cams.string(), views.size());
 }
 
 struct GenerateLayoutArgs {
@@ -354,21 +395,24 @@ void registerLayout(CLI::App& app) {
       "Write a scene as a layout.json: a mesh scene (OBJ, glTF, ... incl. SceneNet layouts: "
       "--from obj) with its materials, textures and NYU40 labels, a 3D-FRONT house JSON "
       "(--from 3dfront, furniture from a 3D-FUTURE folder or as labelled boxes), or a Mitsuba "
-      "scene (--from mitsuba: its sensor is written as camera.json beside the layout), ready "
+      "scene (--from mitsuba: its sensor is written as camera.json beside the layout), or a Sweet "
+      "Home 3D home (.sh3d: walls, rooms, doors and windows cut, furniture, lights, daylight "
+      "from its compass; its stored views are written as cameras.tum beside the layout), ready "
       "for lights and motion");
   auto import_args = std::make_shared<SceneArgs>();
   import->add_option("FILE", import_args->path,
                      "the scene to import (the same as --scene): .json 3D-FRONT house, .xml "
-                     "Mitsuba scene, or any mesh file Assimp reads (.obj .gltf .glb .ply .fbx ...)");
+                     "Mitsuba scene, .sh3d Sweet Home 3D home, or any mesh file Assimp reads "
+                     "(.obj .gltf .glb .ply .fbx ...)");
   import_args->addTo(*import);
   auto out = std::make_shared<std::string>();
   auto from = std::make_shared<std::string>();
   auto models = std::make_shared<std::string>();
   import
       ->add_option("--from", *from,
-                   "obj (any Assimp format, SceneNet included), 3dfront or mitsuba; default: "
-                   "3dfront for .json, mitsuba for .xml, obj otherwise")
-      ->check(CLI::IsMember({"obj", "scenenet", "3dfront", "mitsuba"}));
+                   "obj (any Assimp format, SceneNet included), 3dfront, mitsuba or sh3d; "
+                   "default: 3dfront for .json, mitsuba for .xml, sh3d for .sh3d, obj otherwise")
+      ->check(CLI::IsMember({"obj", "scenenet", "3dfront", "mitsuba", "sh3d"}));
   import->add_option("--models", *models,
                      "3dfront: 3D-FUTURE model folder (<jid>/raw_model.obj); default: none, "
                      "furniture becomes labelled boxes");
@@ -378,6 +422,7 @@ void registerLayout(CLI::App& app) {
     const std::string ext = std::filesystem::path(import_args->path).extension().string();
     const std::string kind = !from->empty()   ? *from
                              : ext == ".json" ? "3dfront"
+                             : ext == ".sh3d" ? "sh3d"
                              : import_args->isMitsuba() ? "mitsuba"
                                                         : "obj";
     if (kind == "3dfront") {
@@ -399,6 +444,9 @@ void registerLayout(CLI::App& app) {
         std::fprintf(stderr, "warning: %s: %s\n", import_args->path.c_str(),
                      lights.summary().c_str());
       importScene(std::move(s), *out);
+    } else if (kind == "sh3d") {
+      if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
+      importHome(*import_args, *out);
     } else if (kind == "mitsuba") {
       if (!models->empty()) throw InputError("", "--models", "only for --from 3dfront");
       importMitsuba(*import_args, *out);

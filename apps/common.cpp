@@ -14,6 +14,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "assets/sh3d_import.h"
 #include "render/sensor_noise.h"
 #include "render/tonemap.h"
 #include "procedural/apartment.h"
@@ -83,6 +84,13 @@ Scene SceneArgs::loadScene() const {
     opt.add_lights = false;  // the automatic lights (load) light it, as every imported scene
     Front3dReport report;
     Scene s = importFront3d(path, opt, &report);
+    const std::string warn = report.summary();
+    if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
+    return s;
+  }
+  if (p.extension() == ".sh3d") {  // a Sweet Home 3D home
+    Sh3dImportReport report;
+    Scene s = importSh3d(path, Sh3dImportOptions{}, &report);
     const std::string warn = report.summary();
     if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
     return s;

@@ -15,7 +15,7 @@ PACKAGES=(
   libopencv-dev libopencv-contrib-dev
   libbullet-dev
   libtinygltf-dev
-  libzip-dev sweethome3d-furniture
+  libzip-dev sweethome3d-furniture libgeos-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

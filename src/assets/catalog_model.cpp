@@ -79,8 +79,11 @@ fs::path extractCatalogModel(const FurnitureCatalog& catalog, const CatalogPiece
   const fs::path root = cache_dir / catalog.checksum;
   const fs::path model_rel(piece.model);
   const fs::path folder_rel = piece.multi_part ? model_rel.parent_path() : model_rel;
-  const fs::path target = root / folder_rel;
-  const fs::path obj = root / model_rel;
+  // A home (.sh3d) stores a single-file model as a bare entry ("12"): Assimp picks its reader
+  // by extension, so such an entry is written as "12.obj" (every such entry is an OBJ).
+  const bool bare = !piece.multi_part && model_rel.extension().empty();
+  const fs::path target = root / (bare ? fs::path(model_rel.string() + ".obj") : folder_rel);
+  const fs::path obj = bare ? target : root / model_rel;
   std::error_code ec;
   if (fs::exists(target, ec)) return obj;
   // Everything the model needs goes to a temporary folder beside the target first, then one
@@ -211,7 +214,8 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
     out.objects.push_back(std::move(obj));
   }
 
-  // Lamps: one point light per bulb. Catalog positions are cm from the left, back and bottom.
+  // Lamps: one point light per bulb. Catalog positions are cm from the left, FRONT and bottom
+  // (HomeLight); our front faces -y.
   const double lamp_total_w_sr = m.label.category == "floor_lamp"      ? 4.5
                                  : m.label.category == "table_lamp"    ? 2.5
                                  : m.label.category == "ceiling_light" ? 6.0
@@ -223,7 +227,7 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
     l.name = fmt::format("{} bulb {}", piece.name, i + 1);
     l.type = LightType::Point;
     l.position = Vec3(src.position_cm.x() - piece.width_cm / 2,
-                      piece.depth_cm / 2 - src.position_cm.y(), src.position_cm.z()) /
+                      src.position_cm.y() - piece.depth_cm / 2, src.position_cm.z()) /
                  100.0;
     // A grey catalog colour (#888888, #555555) is a brightness hint for Sweet Home 3D's
     // renderer, not a tint: such bulbs are warm white (2700 K); a coloured one keeps its hue.

@@ -655,6 +655,10 @@ std::string ImportReport::summary(const std::string& default_category) const {
     parts.push_back(fmt::format("{} material(s) defined in no material library get a default "
                                 "grey ({})",
                                 grey_materials.size(), listNames(grey_materials)));
+  if (obj_missing_normals > 0)
+    parts.push_back(fmt::format("{} face corner(s) name a normal the file does not have; they "
+                                "are shaded without it",
+                                obj_missing_normals));
   if (obj_w_values > 0)
     parts.push_back(fmt::format("{} vertex line(s) have a 4th (w) value, ignored as for "
                                 "polygons it means nothing (Assimp would divide by it)",
@@ -781,6 +785,7 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   auto importer = readFile(path, path, "", &prepass);
   SceneBuilder builder(importer->GetScene(), path, opt, labels, *default_id);
   builder.report.obj_w_values = prepass.w_values;
+  builder.report.obj_missing_normals = prepass.missing_normals;
   builder.report.obj_leading_dots = prepass.leading_dots;
   builder.report.obj_late_groups = prepass.late_groups;
   builder.report.missing_mtllibs = prepass.missing_mtllibs;

@@ -58,6 +58,7 @@ struct ImportReport {
   size_t split_shells = 0;  ///< wall objects that held the floor or ceiling too (room_shell.h)
   // OBJ files (scene/obj_prepass.h): what Assimp would have got wrong or said nothing about
   size_t obj_w_values = 0;                    ///< `v x y z w` lines whose w was dropped
+  size_t obj_missing_normals = 0;  ///< face corners naming a normal the file lacks (dropped)
   size_t obj_leading_dots = 0;                ///< numbers like `.5` read as 0.5
   size_t obj_late_groups = 0;  ///< groups named after their faces (ObjPrepass::late_groups)
   std::vector<std::string> missing_mtllibs;   ///< `mtllib` files not found

@@ -58,6 +58,14 @@ void checkIndex(const std::string& s, int64_t count, const char* what, const cha
                      count == 1 ? what : plural));
 }
 
+/// Is a face corner's index (not empty) within the `count` elements read so far?
+bool indexInRange(const std::string& s, int64_t count) {
+  int64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || ptr != s.data() + s.size()) return true;  // checked later
+  return v != 0 && v <= count && -v <= count;
+}
+
 }  // namespace
 
 ObjPrepass prepassObj(const std::string& path) {
@@ -118,7 +126,17 @@ ObjPrepass prepassObj(const std::string& path) {
           if (a != std::string::npos)
             checkIndex(c.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1),
                        nvt, "texture coordinate", "texture coordinates", path, line_no);
-          if (b != std::string::npos) checkIndex(c.substr(b + 1), nvn, "normal", "normals", path, line_no);
+          if (b == std::string::npos) continue;
+          if (!indexInRange(c.substr(b + 1), nvn)) {
+            // a normal that is not there (Sweet Home 3D's own window models: `f 108 107 98
+            // 81//125` in a file without `vn`): that corner is shaded without it, as Sweet
+            // Home 3D's reader does, instead of failing the file
+            tok[k] = c.substr(0, b == a + 1 ? a : b);
+            ++out.missing_normals;
+            changed = true;
+            continue;
+          }
+          checkIndex(c.substr(b + 1), nvn, "normal", "normals", path, line_no);
         }
         if (tok.size() < 4) {  // `f a b`: an edge, which Assimp keeps as a malformed face
           tok[0] = "l";
@@ -151,7 +169,8 @@ ObjPrepass prepassObj(const std::string& path) {
       rewritten += line + (cr ? "\r" : "") + eol;
     }
   }
-  if (out.w_values > 0 || out.leading_dots > 0 || out.late_groups > 0 || out.line_faces > 0)
+  if (out.w_values > 0 || out.leading_dots > 0 || out.late_groups > 0 || out.line_faces > 0 ||
+      out.missing_normals > 0)
     out.text = std::move(rewritten);
   // material libraries: a name with spaces is one file or several (tinyobjloader reads both)
   std::set<std::string> defined;

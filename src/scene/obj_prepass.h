@@ -19,7 +19,10 @@
 //  - faces of one or two vertices (`f 12 40`, edges some exporters write among the faces):
 //    Assimp keeps them as faces its own validation then rejects ("is a LINE but
 //    mPrimitiveTypes does not report the LINE flag"), failing the whole file; they are
-//    rewritten as `l` lines, which are dropped like every line.
+//    rewritten as `l` lines, which are dropped like every line;
+//  - a face corner naming a normal that does not exist (`81//125` in a file with no `vn`, in
+//    Sweet Home 3D's own window models): the corner loses its normal reference (`81`), as
+//    Sweet Home 3D's reader ignores it, instead of the whole file failing.
 // The text is only rewritten when something above needs it; Assimp then reads the rewritten
 // text in place of the file (ObjPrepass::text), and every other file (MTL, textures) as usual.
 #include <string>
@@ -32,6 +35,7 @@ struct ObjPrepass {
   size_t w_values = 0;   ///< `v` lines whose 4th value (w) was dropped
   size_t leading_dots = 0;                   ///< numbers given a leading 0
   size_t line_faces = 0;   ///< `f` lines of fewer than 3 vertices rewritten as `l` lines
+  size_t missing_normals = 0;  ///< face corners naming a normal beyond those read (dropped)
   size_t late_groups = 0;  ///< `g NAME` lines put before faces whose group is declared later
   std::vector<std::string> missing_mtllibs;  ///< as written in the file
   std::vector<std::string> grey_materials;   ///< `usemtl` names no readable library defines

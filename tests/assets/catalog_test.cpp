@@ -11,6 +11,7 @@
 
 #include "../expect_input_error.h"
 #include "../temp_dir.h"
+#include "zip_fixture.h"
 #include "assets/catalog_labels.h"
 #include "assets/catalog_library.h"
 #include "assets/catalog_model.h"
@@ -31,17 +32,7 @@ using test::expectInputError;
 using test::TempDir;
 
 /// Writes a zip archive of `files` (name -> bytes) to `path`.
-void writeZip(const fs::path& path, const std::map<std::string, std::string>& files) {
-  int err = 0;
-  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  ASSERT_NE(z, nullptr);
-  for (const auto& [name, bytes] : files) {
-    zip_source_t* src = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
-    ASSERT_NE(src, nullptr);
-    ASSERT_GE(zip_file_add(z, name.c_str(), src, ZIP_FL_OVERWRITE), 0) << name;
-  }
-  ASSERT_EQ(zip_close(z), 0);
-}
+using test::writeZip;
 
 // ---- .properties --------------------------------------------------------------------------
 
@@ -306,9 +297,10 @@ TEST(FurnitureCatalog, LampLightsAreInTheModelFrame) {
   EXPECT_EQ(m.label.category, "table_lamp");
   EXPECT_DOUBLE_EQ(m.elevation_m, 0.75);
   ASSERT_EQ(m.parts.lights.size(), 2u);
-  // x from the left, y from the back (our +y), z from the bottom; 20 x 40 x 60 cm
-  EXPECT_TRUE(m.parts.lights[0].position.isApprox(Vec3(0, 0.2, 0.6)));
-  EXPECT_TRUE(m.parts.lights[1].position.isApprox(Vec3(-0.1, -0.2, 0.3)));
+  // x from the left, y from the front (our -y), z from the bottom, as Sweet Home 3D's
+  // HomeComponent3D and PhotoRenderer place them; 20 x 40 x 60 cm
+  EXPECT_TRUE(m.parts.lights[0].position.isApprox(Vec3(0, -0.2, 0.6)));
+  EXPECT_TRUE(m.parts.lights[1].position.isApprox(Vec3(-0.1, 0.2, 0.3)));
   EXPECT_EQ(m.parts.lights[0].temperature_k, 2700.f);  // grey: warm white
   EXPECT_EQ(m.parts.lights[1].temperature_k, 0.f);     // red: its own colour
   EXPECT_GT(m.parts.lights[1].color.x(), 1.f);

@@ -536,6 +536,14 @@ TEST(AssimpImporter, ObjQuirksOfRealFiles) {
                   {}, &report);
   EXPECT_TRUE(report.missing_mtllibs.empty());
   EXPECT_TRUE(report.grey_materials.empty());
+  // a normal index beyond the file's normals (Sweet Home 3D's window models: `81//125` with no
+  // `vn` at all): that corner is shaded without it, the file still reads
+  const Scene nn = importMeshScene(
+      tmp.write("nn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3//7\nf 2 4 3\n"), {},
+      &report);
+  EXPECT_EQ(nn.triangleCount(), 2u);
+  EXPECT_EQ(report.obj_missing_normals, 1u);
+  EXPECT_NE(report.summary("otherprop").find("normal the file does not have"), std::string::npos);
   // face indices that cannot be right, named by line
   for (const auto& [text, expect] : std::vector<std::pair<std::string, std::string>>{
            {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "line 4: face vertex index 0"},
