@@ -1,5 +1,6 @@
 # The two commands of the README:
-#   make demo   install what is missing, build (Release), generate the built-in sequence into out/demo
+#   make demo   install what is missing, build the program (Release), generate a short sequence
+#               through the built-in apartment into out/demo, one line per step (scripts/demo.sh)
 #   make test   install what is missing, build, run every test (ctest)
 BUILD ?= build
 JOBS ?= $(shell nproc)
@@ -18,9 +19,8 @@ configure: setup
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
-	@$(BUILD)/apps/interiornet generate --out out/demo
-	@echo "frames are in $$(ls -d out/demo/*/*/ | head -1)"
+demo:
+	@BUILD=$(BUILD) JOBS=$(JOBS) bash scripts/demo.sh
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "assets/catalog_library.h"
 #include "common.h"
 #include "sensor_outputs.h"
 #include "core/color.h"
@@ -27,6 +28,7 @@
 #include "dataset/sequence_writer.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "core/plot.h"
 #include "render/lens.h"
 #include "render/renderer.h"
 #include "render/shutter.h"
@@ -67,6 +69,7 @@ struct GenerateArgs {
   std::string sequence = "seq_000";
   std::string config = "original";
   std::string out = "out";
+  std::string contact_sheet;  ///< "" = none
   bool progress = true;
   bool denoise = true;
   bool light_cache = true;
@@ -148,7 +151,7 @@ bool warnIfOutsideScene(const Trajectory& frames, const FreeSpace& space, const 
 
 CameraPath loadTrajectory(const GenerateArgs& a, const Scene& scene) {
   CameraPath out;
-  if (a.trajectory.empty() && a.scene.isDefault()) {
+  if (a.trajectory.empty() && a.scene.isBuiltinRoom()) {
     out.frames = builtinTrajectory(a.frames, a.fps);
     out.path = out.frames;
     out.description = "built-in orbit of the default room";
@@ -317,9 +320,14 @@ nlohmann::json provenance(const GenerateArgs& a, const Scene& scene, const Rende
   // Only what determines the output bytes: no thread count, no output path, no clock time.
   nlohmann::json m;
   m["tool"] = {{"name", "interiornet"}, {"version", version()}};
-  m["layout"] = {{"name", scene.name},
-                 {"source", a.scene.isDefault() ? std::string("built-in default room")
-                                                : fs::path(a.scene.path).filename().string()}};
+  m["layout"] = {
+      {"name", scene.name},
+      {"source", a.scene.isBuiltinRoom() ? std::string("built-in default room")
+                 : a.scene.isBuiltinApartment()
+                     ? fmt::format("built-in apartment (procedural seed {}, 4 rooms, Sweet Home "
+                                   "3D catalog furniture)",
+                                   kBuiltinApartmentSeed)
+                     : fs::path(a.scene.path).filename().string()}};
   m["trajectory"] = cam.description;
   m["render"] = {{"integrator", opt.integrator},
                  {"spp", opt.spp},
@@ -432,6 +440,37 @@ void renderSequence(const GenerateArgs& a, const SceneConfig& c, const CameraPat
                     const std::optional<PoseSpline>& spline, const EventCameraOptions& event_opt,
                     const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats);
 
+/// --contact-sheet: up to 6 frames of cam0 spread over the sequence, at half size, captioned
+/// with their time stamps, as one JPEG (.jpg) or PNG.
+void writeSequenceSheet(const fs::path& seq, const fs::path& out) {
+  std::vector<fs::path> frames;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(seq / "cam0" / "data", ec))
+    if (e.path().extension() == ".png") frames.push_back(e.path());
+  if (frames.empty()) throw InputError(seq.string(), "--contact-sheet", "no cam0 frames to show");
+  std::sort(frames.begin(), frames.end());
+  const size_t n = std::min<size_t>(6, frames.size());
+  std::vector<SheetTile> tiles;
+  for (size_t k = 0; k < n; ++k) {
+    const fs::path& f = frames[n == 1 ? 0 : k * (frames.size() - 1) / (n - 1)];
+    const ImageU8 full = readPng8(f);
+    ImageU8 half(full.width / 2, full.height / 2, 3);
+    for (int y = 0; y < half.height; ++y)
+      for (int x = 0; x < half.width; ++x)
+        for (int ch = 0; ch < 3; ++ch) {
+          const int c = std::min(ch, full.channels - 1);
+          const int sum = full.at(2 * x, 2 * y, c) + full.at(2 * x + 1, 2 * y, c) +
+                          full.at(2 * x, 2 * y + 1, c) + full.at(2 * x + 1, 2 * y + 1, c);
+          half.at(x, y, ch) = static_cast<uint8_t>((sum + 2) / 4);
+        }
+    const double t_s = std::stod(f.stem().string()) * 1e-9;  // EuRoC: nanoseconds
+    tiles.push_back({std::move(half), fmt::format("t = {:.2f} s", t_s)});
+  }
+  fs::create_directories(out.parent_path(), ec);
+  writeContactSheetPng(out, tiles, n > 3 ? 3 : int(n));
+  fmt::print("contact sheet of {} frames: {}\n", n, out.string());
+}
+
 void runGenerate(const GenerateArgs& a) {
   installStopHandlers();  // before the scene loads: a scheduler may stop us at any time
   validateArgs(a);
@@ -491,6 +530,9 @@ void runGenerate(const GenerateArgs& a) {
   for (const SceneConfig& c : configs)
     renderSequence(a, c, cam, lens, lens_type, want, passes, opt, imu, imu_seq, spline,
                    event_opt, depth_noise, formats);
+  if (!a.contact_sheet.empty())
+    writeSequenceSheet(fs::path(a.out) / scene.name / (a.sequence + configs.front().suffix()),
+                       a.contact_sheet);
 }
 
 /// A scene with no light where the camera looks renders black frames, and a silent black
@@ -787,12 +829,14 @@ void registerGenerate(CLI::App& app) {
       "albedo) along a camera trajectory, written as ASL/EuRoC and TUM RGB-D folders. With "
       "--lens fisheye or panorama, 'depth' is the ray distance (there is no z-depth)");
   auto a = std::make_shared<GenerateArgs>();
-  a->scene.addTo(*cmd);
+  a->scene.addTo(*cmd,
+                 "a 4-room apartment furnished from the Sweet Home 3D catalogs (builtin:apartment) "
+                 "where they are installed, else the built-in furnished room (builtin:room)");
   cmd->add_option("--trajectory", a->trajectory,
                   "two-body, hand-held or look-forward: a random trajectory through the layout's "
                   "free space (--seed, --v-mult, ...); or a trajectory file (tum, euroc, icl, "
                   "slambench, scenenet; T_world_camera, OpenCV camera axes). Default: the built-in "
-                  "orbit for the built-in room, two-body for --layout");
+                  "orbit for the built-in room, two-body otherwise");
   a->motion.addTo(*cmd);
   cmd->add_option("--imu", a->imu_rate,
                   "rate in Hz of imu0/ (EuRoC csv, noise-free stream, biases, sensor.yaml), from "
@@ -904,7 +948,14 @@ void registerGenerate(CLI::App& app) {
                 "geometry, for a motion-capture path (TUM, EuRoC) recorded in another room; said "
                 "on stderr and in meta.json, and the ground truth is the moved path");
   cmd->add_flag("--no-progress{false}", a->progress, "do not draw the progress bar");
-  cmd->callback([a] { runGenerate(*a); });
+  cmd->add_option("--contact-sheet", a->contact_sheet,
+                  "also write a contact sheet of up to 6 colour frames spread over the sequence "
+                  "(half size, with their times) to this .jpg or .png");
+  cmd->callback([a] {
+    // without --layout: the catalog-furnished apartment where the catalogs are installed
+    a->scene.default_apartment = catalogsAvailable();
+    runGenerate(*a);
+  });
 }
 
 }  // namespace inet::app

@@ -62,7 +62,7 @@ void runRender(const RenderArgs& a) {
   CameraFile cam;
   if (!a.camera.empty()) {
     cam = loadCameraJson(a.camera);
-  } else if (a.scene.isDefault()) {
+  } else if (a.scene.isBuiltinRoom()) {
     cam.T_world_camera = builtinTrajectory(1, 25.0).poses[0].T_world_camera;
   } else {
     throw InputError("", "--camera", "required with --scene/--layout");

@@ -13,7 +13,10 @@
 #include <fmt/format.h>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "assets/catalog_library.h"
+#include "assets/furniture_catalog.h"
 #include "assets/sh3d_import.h"
 #include "render/sensor_noise.h"
 #include "render/tonemap.h"
@@ -30,8 +33,10 @@ namespace inet::app {
 void SceneArgs::addTo(CLI::App& cmd, const std::string& without) {
   cmd.add_option("--layout,--scene", path,
                  "layout.json, a Mitsuba scene (.xml, docs/mitsuba.md), a 3D-FRONT house (.json), "
-                 "or a mesh scene (.obj .gltf .glb .ply ...) imported with Assimp "
-                 "(docs/import.md); default: " + without);
+                 "a Sweet Home 3D home (.sh3d, docs/assets.md), a mesh scene (.obj .gltf .glb "
+                 ".ply ...) imported with Assimp (docs/import.md), or builtin:room / "
+                 "builtin:apartment (4 rooms furnished from the Sweet Home 3D catalogs); "
+                 "default: " + without);
   cmd.add_option("--up", up,
                  "up axis of an imported scene: y, z or auto (default: auto for mesh files: "
                  "glTF is Y-up, others by where their floors and ceilings face, said on "
@@ -70,7 +75,8 @@ Scene SceneArgs::load() const {
 }
 
 Scene SceneArgs::loadScene() const {
-  if (path.empty()) return makeDefaultScene();
+  if (isBuiltinRoom()) return makeDefaultScene();
+  if (isBuiltinApartment()) return builtinApartment();
   std::filesystem::path p(path);
   if (p.extension() == ".json") {
     try {
@@ -336,6 +342,25 @@ Scene defaultApartment() {
   }
   fs::remove_all(dir);
   return scene;
+}
+
+Scene builtinApartment() {
+  if (!catalogsAvailable())
+    throw InputError(catalogDir(), "--layout builtin:apartment",
+                     "the apartment is furnished from Sweet Home 3D's catalogs, which are not "
+                     "installed (bash scripts/setup.sh installs sweethome3d-furniture)");
+  ApartmentOptions opt;
+  opt.seed = kBuiltinApartmentSeed;
+  opt.rooms = 4;
+  opt.furniture = FurnitureSource::Catalog;
+  installCatalogResolver();
+  // the procedural textures stay where the renderer reads them; written atomically, so runs in
+  // parallel and a run stopped half-way leave whole files
+  const std::filesystem::path dir =
+      userCacheDir("builtin") / fmt::format("apartment_seed{}", kBuiltinApartmentSeed);
+  Scene s = makeApartment(opt, dir, dir / "textures").scene;
+  s.name = "apartment";
+  return s;
 }
 
 void execCompanion(const std::string& tool_name, const std::string& subcommand,

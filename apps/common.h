@@ -33,6 +33,17 @@ struct SceneArgs {
   Scene load() const;
   Scene loadScene() const;  ///< without --lights and --auto-lights
   bool isDefault() const { return path.empty(); }
+  /// What the command uses without --layout: the built-in room (render, bench) or, for
+  /// generate, the built-in apartment where the furniture catalogs are installed.
+  bool default_apartment = false;
+  /// --layout builtin:room, or no --layout where the default is the room.
+  bool isBuiltinRoom() const {
+    return path == "builtin:room" || (path.empty() && !default_apartment);
+  }
+  /// --layout builtin:apartment, or no --layout where the default is the apartment.
+  bool isBuiltinApartment() const {
+    return path == "builtin:apartment" || (path.empty() && default_apartment);
+  }
   /// Is the path a Mitsuba scene file (.xml)?
   bool isMitsuba() const;
   /// What --up, --scale and --labels ask of a Mitsuba import.
@@ -98,6 +109,13 @@ struct MotionArgs {
 /// The built-in procedural apartment (seed 0) that commands use when no layout is given and a
 /// furnished apartment is needed (its textures are made in a temporary folder and removed).
 Scene defaultApartment();
+
+/// The apartment `generate` and `make demo` show where the Sweet Home 3D catalogs are installed
+/// (--layout builtin:apartment): procedural apartment seed kBuiltinApartmentSeed, 4 rooms,
+/// furnished from the catalogs, daylight; its textures live in userCacheDir("builtin").
+/// Without the catalogs, an InputError saying how to install them.
+Scene builtinApartment();
+inline constexpr uint64_t kBuiltinApartmentSeed = 3;
 
 /// readTrajectory, with what the reader did about the file's quirks (repeated stamps: see
 /// TrajectoryReadReport) printed as one warning line.

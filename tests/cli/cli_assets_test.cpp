@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 #include "cli_util.h"
+#include "core/atomic_file.h"
 #include "core/image_io.h"
 
 namespace fs = std::filesystem;
@@ -66,6 +68,46 @@ TEST(CliAssets, ListAndSheetOnTheInstalledCatalogs) {
   for (int y = 4; y < 52; ++y)
     for (int x = 4; x < 52; ++x) dark += im.at(x, y, 0) < 150;
   EXPECT_GT(dark, 20);
+}
+
+}  // namespace
+}  // namespace inet::test
+
+namespace inet::test {
+namespace {
+
+// generate without --layout shows the catalog-furnished apartment (builtin:apartment), and
+// --contact-sheet gathers a few of its frames; builtin:room stays the old furnished room.
+TEST(CliAssets, GenerateDefaultsToTheCatalogApartment) {
+  if (!fs::is_directory("/usr/share/sweethome3d/furniture"))
+    GTEST_SKIP() << "sweethome3d-furniture is not installed (bash scripts/setup.sh)";
+  TempDir dir("gen_default");
+  const RunResult r = runInterinet(
+      "generate --trajectory look-forward --frames 4 --fps 2 --width 96 --height 72 --fx 75 "
+      "--fy 75 --spp 2 --imu 0 --passes rgb,depth,label --no-progress --out " +
+      (dir / "out").string() + " --contact-sheet " + (dir / "sheet.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path seq = dir / "out" / "apartment" / "seq_000";
+  const auto meta = nlohmann::json::parse(readTextFile(seq / "meta.json"));
+  EXPECT_NE(meta["layout"]["source"].get<std::string>().find("built-in apartment"),
+            std::string::npos);
+  // furniture in view: some class beyond wall, floor, ceiling, door, window
+  std::set<int> classes;
+  for (const auto& e : fs::directory_iterator(seq / "label0" / "data"))
+    if (e.path().string().find("_nyu.png") != std::string::npos)
+      for (uint8_t v : readPng8(e.path()).data) classes.insert(v);
+  EXPECT_TRUE(std::any_of(classes.begin(), classes.end(), [](int c) {
+    return c != 0 && c != 1 && c != 2 && c != 8 && c != 9 && c != 22;
+  })) << classes.size() << " classes";
+  const ImageU8 sheet = readPng8(dir / "sheet.png");
+  EXPECT_GE(sheet.width, 3 * 48);  // 4 frames at half size, three to a row
+  EXPECT_GE(sheet.height, 2 * 36);
+  // the old default, by name
+  const RunResult room = runInterinet(
+      "generate --layout builtin:room --frames 2 --width 32 --height 24 --fx 30 --fy 30 --spp 1 "
+      "--imu 0 --no-progress --out " + (dir / "room").string());
+  ASSERT_EQ(room.exit_code, 0) << room.err;
+  EXPECT_TRUE(fs::exists(dir / "room" / "default_room" / "seq_000"));
 }
 
 }  // namespace

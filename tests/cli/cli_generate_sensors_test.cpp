@@ -123,7 +123,8 @@ class GenerateAllSensors : public ::testing::Test {
     // 64 x 48 at fx 48 (67 degrees), 5 frames of the built-in orbit, stereo 10 cm; the event
     // camera 32 x 24 over the spline's range
     result_ = new RunResult(runInterinet(
-        "generate --frames 5 --width 64 --height 48 --fx 48 --fy 48 --spp 2 --passes all "
+        "generate --layout builtin:room --frames 5 --width 64 --height 48 --fx 48 --fy 48 "
+        "--spp 2 --passes all "
         "--stereo 0.1 --event-width 32 --event-height 24 --event-spp 2 --no-progress --out " +
         (*dir_ / "out").string()));
     seq_ = (*dir_ / "out" / "default_room" / "seq_000");
@@ -338,7 +339,8 @@ TEST(GenerateSensorErrors, ImpossibleCombinationsNameTheFlag) {
            {"--passes all --refractory-ms -1", "--refractory-ms"},
            {"--passes all --leak-rate-hz -2", "--leak-rate-hz"}}) {
     const RunResult r =
-        runInterinet("generate --frames 2 --no-progress " + args + " --out " + (dir / "o").string());
+        runInterinet("generate --layout builtin:room --frames 2 --no-progress " + args +
+                     " --out " + (dir / "o").string());
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_NE(r.err.find(flag), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir / "o")) << args << ": nothing written";

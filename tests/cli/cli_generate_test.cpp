@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 namespace inet::test {
 namespace {
 
-const std::string kSmall = "generate --width 160 --height 120 --fx 150 --fy 150 --no-progress ";
+const std::string kSmall =
+    "generate --layout builtin:room --width 160 --height 120 --fx 150 --fy 150 --no-progress ";
 
 fs::path seqDir(const fs::path& out) {
   return out / "default_room" / "seq_000";
@@ -267,7 +268,8 @@ size_t expectPngHoldsRayDistance(const fs::path& seq) {
 TEST(Generate, FisheyeWritesEquidistantCalibrationAndEveryPass) {
   TempDir dir("gen_fisheye");
   RunResult r =
-      runInterinet("generate --lens fisheye --width 64 --frames 2 --spp 1 --no-progress --out " +
+      runInterinet("generate --layout builtin:room --lens fisheye --width 64 --frames 2 --spp 1 "
+                   "--no-progress --out " +
                    (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   fs::path s = seqDir(dir / "out");
@@ -316,7 +318,8 @@ TEST(Generate, FisheyeWritesEquidistantCalibrationAndEveryPass) {
 TEST(Generate, PanoramaWritesEquirectangularCalibration) {
   TempDir dir("gen_pano");
   RunResult r = runInterinet(
-      "generate --lens panorama --width 64 --height 32 --frames 2 --spp 1 --no-progress --out " +
+      "generate --layout builtin:room --lens panorama --width 64 --height 32 --frames 2 --spp 1 "
+      "--no-progress --out " +
       (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   fs::path s = seqDir(dir / "out");
@@ -358,7 +361,8 @@ TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
   };
   for (const auto& [args, flag] : cases) {
     const fs::path out = dir / "out";
-    RunResult r = runInterinet("generate --frames 1 --spp 1 --no-progress " + args + " --out " +
+    RunResult r = runInterinet("generate --layout builtin:room --frames 1 --spp 1 --no-progress " +
+                               args + " --out " +
                                out.string());
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -655,7 +659,8 @@ TEST(Generate, SigtermStopsWith143AndARerunResumes) {
 // A path inside the room says nothing.
 TEST(Generate, AFilePathOutsideTheSceneIsWarnedAbout) {
   TempDir dir("gen_outside");
-  const std::string small = "generate --width 32 --height 24 --fx 30 --fy 30 --spp 1 --frames 3 "
+  const std::string small = "generate --layout builtin:room --width 32 --height 24 --fx 30 "
+                            "--fy 30 --spp 1 --frames 3 "
                             "--passes rgb,depth --no-progress ";
   RunResult first = runInterinet(small + "--out " + (dir / "a").string());
   ASSERT_EQ(first.exit_code, 0) << first.err;

@@ -12,7 +12,8 @@ namespace {
 TEST(GenerateMemory, PeakRssFlatOverLongSequences) {
   TempDir dir("gen_mem");
   std::string common =
-      "generate --width 320 --height 240 --fx 300 --fy 300 --spp 1 --max-bounces 2 --no-progress ";
+      "generate --layout builtin:room --width 320 --height 240 --fx 300 --fy 300 --spp 1 "
+      "--max-bounces 2 --no-progress ";
   RunResult short_run = runInterinet(common + "--frames 25 --out " + (dir / "a").string());
   ASSERT_EQ(short_run.exit_code, 0) << short_run.err;
   RunResult long_run = runInterinet(common + "--frames 250 --out " + (dir / "b").string());

@@ -25,7 +25,7 @@ inline constexpr int kSeqFrames = 6;
 /// alone (auto exposure's +1 EV here: ATE 12.0 -> 7.4 mm, unaligned drift 19 -> 31 mm).
 inline std::filesystem::path generateRoom(const std::filesystem::path& out) {
   const RunResult r = runInterinet(
-      "generate --frames " + std::to_string(kSeqFrames) +
+      "generate --layout builtin:room --frames " + std::to_string(kSeqFrames) +
       " --width 240 --height 180 --fx 225 --fy 225 --spp 2 --passes rgb,depth,label,flow "
       "--format asl --exposure fixed --no-progress --out " +
       out.string());
