@@ -4,6 +4,7 @@
 #include <tbb/info.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -376,7 +377,13 @@ void execCompanion(const std::string& tool_name, const std::string& subcommand,
   argv.push_back(nullptr);
   std::fflush(nullptr);
   ::execv(tool.c_str(), argv.data());
-  throw InputError(tool.string(), "", fmt::format("cannot run it: {}", std::strerror(errno)));
+  const int err = errno;
+  if (err == ENOENT)  // built with `--target interiornet` alone (make demo)
+    throw InputError(tool.string(), "",
+                     fmt::format("not built: build it with `cmake --build build --target {}` "
+                                 "(or `make build`)",
+                                 tool_name));
+  throw InputError(tool.string(), "", fmt::format("cannot run it: {}", std::strerror(err)));
 }
 
 }  // namespace inet::app

@@ -123,7 +123,7 @@ void joinWalls(const std::vector<Sh3dWall>& walls, std::vector<WallShape>& shape
       if (other < 0 || size_t(other) == i) continue;
       const Sh3dWall& o = walls[size_t(other)];
       // where the other wall touches this one: its end or its start
-      const bool other_end = at_start ? (o.wall_at_end == int(i)) : (o.wall_at_end == int(i));
+      const bool other_end = o.wall_at_end == int(i);
       const bool other_start = o.wall_at_start == int(i);
       if (!other_end && !other_start) continue;  // a one-sided join: left as it is
       bool other_at_start = other_start && !other_end;
