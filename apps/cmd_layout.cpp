@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/progress.h"
+#include "core/text.h"
 #include "procedural/apartment.h"
 #include "render/camera.h"
 #include "render/lights.h"
@@ -67,23 +68,23 @@ void importScene(Scene s, const std::string& out) {
   // images the file embedded (glTF data URIs, .glb) live in a cache: a copy goes next to the
   // layout, so the folder holds everything it needs
   // (and textures importers extract from archives, .sh3d homes, to the user cache)
-  const fs::path cache = fs::absolute(embeddedTextureCache());
-  const std::string user_cache = fs::absolute(userCacheDir("")).lexically_normal().string();
+  const fs::path cache = fs::absolute(embeddedTextureCache()).lexically_normal();
+  fs::path user_cache = fs::absolute(userCacheDir("")).lexically_normal();
+  if (!user_cache.has_filename()) user_cache = user_cache.parent_path();  // "…/interiornet/"
   for (Material& m : s.materials)
     for (TextureRef* t : {&m.albedo_texture, &m.roughness_texture, &m.normal_texture}) {
       if (t->empty()) continue;
-      const fs::path p = fs::absolute(t->path);
-      const bool cached = p.lexically_normal().string().rfind(user_cache, 0) == 0;
-      if (p.parent_path() == cache || cached) {
+      const fs::path p = fs::absolute(t->path).lexically_normal();
+      const std::string in_cache = p.lexically_relative(user_cache).generic_string();
+      if (!in_cache.empty() && in_cache.rfind("..", 0) != 0) {
         fs::create_directories(dir / "textures", ec);
-        // cached files from different archives may share a name: the parent folder's name
-        // (a content checksum or model folder) keeps them apart
+        // embedded images are named by their content hash; files extracted from archives may
+        // share a name, so they are named by their place in the cache (the archive's content
+        // checksum is a folder of it): the same name on every machine
+        std::string name = in_cache;
+        std::replace(name.begin(), name.end(), '/', '_');
         const fs::path copy =
-            dir / "textures" /
-            (p.parent_path() == cache ? p.filename().string()
-                                      : fmt::format("{:016x}_{}", std::hash<std::string>{}(
-                                                                      p.parent_path().string()),
-                                                    p.filename().string()));
+            dir / "textures" / (p.parent_path() == cache ? p.filename().string() : name);
         if (!fs::exists(copy, ec)) fs::copy_file(p, copy, ec);
         if (ec) throw InputError(copy.string(), "--out", "cannot write: " + ec.message());
         t->path = copy.string();
@@ -422,7 +423,7 @@ void registerLayout(CLI::App& app) {
     const std::string ext = std::filesystem::path(import_args->path).extension().string();
     const std::string kind = !from->empty()   ? *from
                              : ext == ".json" ? "3dfront"
-                             : ext == ".sh3d" ? "sh3d"
+                             : lowerExtension(import_args->path) == ".sh3d" ? "sh3d"
                              : import_args->isMitsuba() ? "mitsuba"
                                                         : "obj";
     if (kind == "3dfront") {

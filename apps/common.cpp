@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "assets/catalog_library.h"
 #include "assets/furniture_catalog.h"
 #include "assets/sh3d_import.h"
@@ -95,7 +96,7 @@ Scene SceneArgs::loadScene() const {
     if (!warn.empty()) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), warn.c_str());
     return s;
   }
-  if (p.extension() == ".sh3d") {  // a Sweet Home 3D home
+  if (lowerExtension(path) == ".sh3d") {  // a Sweet Home 3D home
     Sh3dImportReport report;
     Scene s = importSh3d(path, Sh3dImportOptions{}, &report);
     const std::string warn = report.summary();

@@ -122,6 +122,39 @@ fs::path extractCatalogModel(const FurnitureCatalog& catalog, const CatalogPiece
   return obj;
 }
 
+std::vector<Light> lampLights(const CatalogPiece& piece, const std::string& category) {
+  // Catalog positions are cm from the left, FRONT and bottom (HomeLight); our front faces -y.
+  const double lamp_total_w_sr = category == "floor_lamp"      ? 4.5
+                                 : category == "table_lamp"    ? 2.5
+                                 : category == "ceiling_light" ? 6.0
+                                 : category == "pendant_light" ? 6.0
+                                                               : 2.0;
+  std::vector<Light> out;
+  for (size_t i = 0; i < piece.lights.size(); ++i) {
+    const auto& src = piece.lights[i];
+    Light l;
+    l.name = fmt::format("{} bulb {}", piece.name, i + 1);
+    l.type = LightType::Point;
+    l.position = Vec3(src.position_cm.x() - piece.width_cm / 2,
+                      src.position_cm.y() - piece.depth_cm / 2, src.position_cm.z()) /
+                 100.0;
+    // A grey catalog colour (#888888, #555555) is a brightness hint for Sweet Home 3D's
+    // renderer, not a tint: such bulbs are warm white (2700 K); a coloured one keeps its hue.
+    const Vec3f lin(float(srgbEotf(src.color.x())), float(srgbEotf(src.color.y())),
+                    float(srgbEotf(src.color.z())));
+    const bool grey = (src.color.maxCoeff() - src.color.minCoeff()) < 0.02f;
+    if (grey) {
+      l.temperature_k = 2700.f;
+    } else {
+      const float lum = luminance(lin);
+      l.color = lum > 0 ? Vec3f(lin / lum) : Vec3f::Ones();
+    }
+    l.intensity = static_cast<float>(lamp_total_w_sr / double(piece.lights.size()));
+    out.push_back(l);
+  }
+  return out;
+}
+
 CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiece& piece,
                               const fs::path& cache_dir) {
   const std::string where_field = fmt::format("model#{}", piece.index);
@@ -214,35 +247,7 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
     out.objects.push_back(std::move(obj));
   }
 
-  // Lamps: one point light per bulb. Catalog positions are cm from the left, FRONT and bottom
-  // (HomeLight); our front faces -y.
-  const double lamp_total_w_sr = m.label.category == "floor_lamp"      ? 4.5
-                                 : m.label.category == "table_lamp"    ? 2.5
-                                 : m.label.category == "ceiling_light" ? 6.0
-                                 : m.label.category == "pendant_light" ? 6.0
-                                                                       : 2.0;
-  for (size_t i = 0; i < piece.lights.size(); ++i) {
-    const auto& src = piece.lights[i];
-    Light l;
-    l.name = fmt::format("{} bulb {}", piece.name, i + 1);
-    l.type = LightType::Point;
-    l.position = Vec3(src.position_cm.x() - piece.width_cm / 2,
-                      src.position_cm.y() - piece.depth_cm / 2, src.position_cm.z()) /
-                 100.0;
-    // A grey catalog colour (#888888, #555555) is a brightness hint for Sweet Home 3D's
-    // renderer, not a tint: such bulbs are warm white (2700 K); a coloured one keeps its hue.
-    const Vec3f lin(float(srgbEotf(src.color.x())), float(srgbEotf(src.color.y())),
-                    float(srgbEotf(src.color.z())));
-    const bool grey = (src.color.maxCoeff() - src.color.minCoeff()) < 0.02f;
-    if (grey) {
-      l.temperature_k = 2700.f;
-    } else {
-      const float lum = luminance(lin);
-      l.color = lum > 0 ? Vec3f(lin / lum) : Vec3f::Ones();
-    }
-    l.intensity = static_cast<float>(lamp_total_w_sr / double(piece.lights.size()));
-    out.lights.push_back(l);
-  }
+  out.lights = lampLights(piece, m.label.category);
 
   const Physical phys = physicalOf(m.label.nyu40);
   const double raw_mass = phys.density * m.size.prod();

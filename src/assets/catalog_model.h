@@ -63,6 +63,13 @@ std::filesystem::path extractCatalogModel(const FurnitureCatalog& catalog,
                                           const CatalogPiece& piece,
                                           const std::filesystem::path& cache_dir);
 
+/// The point lights of a lamp's bulbs (`piece.lights`) in the model frame above: Sweet Home
+/// 3D's positions are cm from the left, FRONT and bottom; `category` (ours: floor_lamp,
+/// table_lamp, ceiling_light, pendant_light, else 2 W/sr) sets the radiant intensity the
+/// bulbs share; a grey catalog colour is a brightness hint (warm white, 2700 K), another keeps
+/// its hue.
+std::vector<Light> lampLights(const CatalogPiece& piece, const std::string& category);
+
 /// Loads `piece` of `catalog` (see the top of this file). `cache_dir` "" = catalogModelCache().
 /// Throws InputError naming the archive and "model#N" when the OBJ cannot be read or holds no
 /// triangles.

@@ -1,14 +1,12 @@
 #include "assets/sh3d_import.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -22,6 +20,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "variation/lighting.h"
 
 namespace fs = std::filesystem;
@@ -35,6 +34,11 @@ using V2 = Eigen::Vector2d;
 /// Plan centimetres (y down) to world metres (y up).
 V2 world(const V2& plan) {
   return V2(plan.x(), -plan.y()) / 100.0;
+}
+
+/// World metres back to plan centimetres.
+V2 plan(const V2& world_m) {
+  return V2(world_m.x(), -world_m.y()) * 100.0;
 }
 
 Vec3f linear(const Eigen::Vector3f& srgb) {
@@ -157,11 +161,15 @@ class HomeFiles {
   const ZipArchive& zip() {
     if (!zip_) {
       zip_ = std::make_unique<ZipArchive>(path_);
-      dir_ = userCacheDir("sh3d") / zip_->contentChecksum() / "textures";
+      checksum_ = zip_->contentChecksum();
+      dir_ = userCacheDir("sh3d") / checksum_ / "textures";
     }
     return *zip_;
   }
-  std::string checksum() { return zip().contentChecksum(); }
+  const std::string& checksum() {
+    zip();
+    return checksum_;
+  }
   TextureRef texture(const std::string& entry) {
     auto it = done_.find(entry);
     if (it != done_.end()) return it->second;
@@ -186,6 +194,7 @@ class HomeFiles {
  private:
   std::string path_;
   std::unique_ptr<ZipArchive> zip_;
+  std::string checksum_;
   fs::path dir_;
   std::map<std::string, TextureRef> done_;
 };
@@ -262,26 +271,26 @@ class Builder {
   /// faces their centre lines close, each line lengthened by the wall's thickness at both
   /// ends so walls that stop at another's side still close a face.
   std::vector<Sh3dRoom> roomsFromWalls() const {
-    std::map<int, std::vector<std::array<V2, 2>>> lines;
+    std::map<int, std::vector<std::array<V2, 2>>> lines;  // world metres, per level
     std::set<int> with_rooms;
     for (const Sh3dRoom& r : home_.rooms) with_rooms.insert(r.level);
     for (const Sh3dWall& w : home_.walls) {
       if (with_rooms.count(w.level) || !shown(w.level)) continue;
       const WallShape s = rawWallShape(w);
-      for (size_t k = 0; k + 1 < s.centre.size(); ++k) {
+      const size_t n = s.centre.size();
+      for (size_t k = 0; k + 1 < n; ++k) {
         const V2 d = (s.centre[k + 1] - s.centre[k]).normalized() * s.thickness;
-        lines[w.level].push_back(
-            {V2(s.centre[k] * 100 - d * 100 * (k == 0)),
-             V2(s.centre[k + 1] * 100 + d * 100 * (k + 2 == s.centre.size()))});
+        lines[w.level].push_back({V2(s.centre[k] - d * (k == 0 ? 1.0 : 0.0)),
+                                  V2(s.centre[k + 1] + d * (k + 2 == n ? 1.0 : 0.0))});
       }
     }
     std::vector<Sh3dRoom> out;
     for (const auto& [level, segs] : lines)
-      for (const Ring& face : enclosedFaces(segs, 1e4)) {  // 1 m^2 in cm^2
+      for (const Ring& face : enclosedFaces(segs, 1.0)) {  // at least 1 m^2
         Sh3dRoom r;
         r.id = fmt::format("room from walls {}", out.size() + 1);
         r.level = level;
-        for (const V2& p : face) r.points.push_back(V2(p.x(), -p.y()));  // back to plan axes
+        for (const V2& p : face) r.points.push_back(plan(p));
         out.push_back(r);
       }
     return out;
@@ -448,10 +457,10 @@ class Builder {
     }
   }
 
-  /// Appends a planar quad (a, b, c, d) facing `normal` as two triangles.
+  /// Appends a planar quad (a, b, c, d) facing `normal` as two triangles (degenerate ones
+  /// dropped).
   static void quad(Mesh& m, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
                    const Vec3& normal) {
-    if ((b - a).cross(d - a).norm() < 1e-10 && (c - b).cross(d - b).norm() < 1e-10) return;
     tri(m, a, b, c, normal);
     tri(m, a, c, d, normal);
   }
@@ -509,8 +518,9 @@ class Builder {
       for (const Ring& r : intersectionRings(h, outline)) {
         for (size_t i = 0; i < r.size(); ++i) {
           const V2 p = r[i], q = r[(i + 1) % r.size()];
-          // the wall's top or bottom edge (a hole reaching past it): no reveal there
-          if (std::abs(p.y() - q.y()) < 1e-6 && (std::abs(p.y() - z0) < 1e-6)) continue;
+          // a door's edge on the wall's bottom: no threshold face, the room floors are drawn
+          // at that height and would fight with it
+          if (std::abs(p.y() - z0) < 1e-6 && std::abs(q.y() - z0) < 1e-6) continue;
           const Vec3 p3 = to3(p), q3 = to3(q);
           const Vec3 through = -n3 * depth;
           const V2 mid = (p + q) / 2;
@@ -584,21 +594,63 @@ class Builder {
         cp.lights.push_back(l);
       }
       try {
-        place(p, cp, loadCatalogModel(cat, cp), size_t(index - 1));
+        place(p, loadCatalogModel(cat, cp), size_t(index - 1));
       } catch (const InputError& e) {
         // A light source without a body (Sweet Home 3D's "White light source" is drawn as
         // lines in the plan only) still lights; any other piece whose model has no surface
         // is left out and counted.
         if (e.problem().find("no triangles") == std::string::npos) throw;
         if (p.kind == Sh3dPieceKind::Light && !p.light_sources.empty())
-          bareLights(p);
+          bareLights(p, cp);
         else
           ++report_.empty_models;
       }
     }
   }
 
-  void place(const Sh3dPiece& p, const CatalogPiece& cp, CatalogModel model, size_t piece_index) {
+  /// Model frame -> world for piece `p`. Sweet Home 3D turns a piece by pitch (about its width
+  /// axis) and roll (about its depth axis) around its centre, then by angle (clockwise on
+  /// screen, so -angle about our z): world = yaw tilt (v - centre) + target, the turned box
+  /// centred on (x, y) with its lowest point (of `meshes`, the model's, when tilted) at the
+  /// elevation.
+  Mat4 placement(const Sh3dPiece& p, const std::vector<Mesh>* meshes) const {
+    const Vec3 centre(0, 0, p.height_cm / 200);
+    const Mat3 tilt =
+        (Eigen::AngleAxisd(p.roll, Vec3::UnitY()) * Eigen::AngleAxisd(-p.pitch, Vec3::UnitX()))
+            .toRotationMatrix();
+    const Mat3 yaw = Eigen::AngleAxisd(-p.angle, Vec3::UnitZ()).toRotationMatrix();
+    double lo = -centre.z();
+    if ((p.pitch != 0 || p.roll != 0) && meshes) {
+      lo = std::numeric_limits<double>::infinity();
+      for (const Mesh& m : *meshes)
+        for (const auto& v : m.positions)
+          lo = std::min(lo, (tilt * (v.cast<double>() - centre)).z());
+    }
+    const V2 c = world(V2(p.x_cm, p.y_cm));
+    const double bottom = (home_.levelElevation(p.level) + p.elevation_cm) / 100;
+    Mat4 T = Mat4::Identity();
+    T.block<3, 3>(0, 0) = yaw * tilt;
+    T.block<3, 1>(0, 3) = Vec3(c.x(), c.y(), bottom - lo) - yaw * tilt * centre;
+    return T;
+  }
+
+  /// A piece's bulbs (model frame) placed by T and dimmed or brightened by its power: Sweet
+  /// Home 3D's renderer gives a light 5 power^2 / r^2, and its default power is 0.5.
+  void addLights(const Sh3dPiece& p, std::vector<Light> lights, const Mat4& T,
+                 const std::string& uid, const std::string& object) {
+    const double scale = (p.power / 0.5) * (p.power / 0.5);
+    for (Light& l : lights) {
+      ++report_.lights;
+      l.position = (T * l.position.homogeneous()).head<3>();
+      l.intensity = float(l.intensity * scale);
+      l.on = p.power > 0;
+      l.object = object;
+      l.name = fmt::format("{} {}", uid, l.name);
+      scene_.lights.push_back(l);
+    }
+  }
+
+  void place(const Sh3dPiece& p, CatalogModel model, size_t piece_index) {
     ++report_.pieces;
     report_.doors_windows += p.kind == Sh3dPieceKind::DoorOrWindow;
     if (model.label.rule.rfind("default", 0) == 0) ++report_.unlabelled;
@@ -611,29 +663,10 @@ class Builder {
         for (auto& n : m.normals) n.x() = -n.x();
         for (auto& t : m.triangles) std::swap(t[1], t[2]);
       }
-    // Sweet Home 3D turns a piece by pitch (about its width axis) and roll (about its depth
-    // axis) around its centre, then by angle (clockwise on screen, so -angle about our z).
-    const Eigen::Vector3d centre(0, 0, cp.height_cm / 200);
-    const Mat3 tilt =
-        (Eigen::AngleAxisd(p.roll, Vec3::UnitY()) * Eigen::AngleAxisd(-p.pitch, Vec3::UnitX()))
-            .toRotationMatrix();
-    const Mat3 yaw = Eigen::AngleAxisd(-p.angle, Vec3::UnitZ()).toRotationMatrix();
-    Mat4 T = Mat4::Identity();
-    T.block<3, 3>(0, 0) = yaw * tilt;
+    if (p.mirrored)
+      for (Light& l : parts.lights) l.position.x() = -l.position.x();
+    const Mat4 T = placement(p, &parts.meshes);
     const V2 c = world(V2(p.x_cm, p.y_cm));
-    const double bottom = (home_.levelElevation(p.level) + p.elevation_cm) / 100;
-    // world = yaw tilt (v - centre) + target: the turned box stays centred on (x, y) and its
-    // lowest point sits at the elevation (the box's centre when not tilted)
-    double lo = -centre.z();
-    if (p.pitch != 0 || p.roll != 0) {
-      lo = std::numeric_limits<double>::infinity();
-      for (const Mesh& m : parts.meshes)
-        for (const auto& v : m.positions)
-          lo = std::min(lo, (tilt * (v.cast<double>() - centre)).z());
-    }
-    const Vec3 target(c.x(), c.y(), bottom - lo);
-    const Vec3 t = target - yaw * tilt * centre;
-    T.block<3, 1>(0, 3) = t;
 
     const std::string uid = fmt::format("{} {}", p.name.empty() ? "piece" : p.name, ++piece_count_);
     // materials: the piece's colour, then per-material overrides
@@ -676,42 +709,14 @@ class Builder {
       scene_.objects.push_back(std::move(obj));
     }
     if (scene_.objects.size() == first) return;
-    // Sweet Home 3D's renderer gives a light 5 power^2 / r^2; its default power is 0.5
-    const double scale = (p.power / 0.5) * (p.power / 0.5);
-    for (Light l : parts.lights) {
-      ++report_.lights;
-      l.position = (T * l.position.homogeneous()).head<3>();
-      l.intensity = float(l.intensity * scale);
-      l.on = p.power > 0;
-      l.object = scene_.objects[first].name;
-      l.name = fmt::format("{} {}", uid, l.name);
-      scene_.lights.push_back(l);
-    }
+    addLights(p, parts.lights, T, uid, scene_.objects[first].name);
   }
 
   /// The light sources of a light whose model draws nothing, as point lights.
-  void bareLights(const Sh3dPiece& p) {
-    const V2 c = world(V2(p.x_cm, p.y_cm));
-    const Mat3 yaw = Eigen::AngleAxisd(-p.angle, Vec3::UnitZ()).toRotationMatrix();
-    const double bottom = (home_.levelElevation(p.level) + p.elevation_cm) / 100;
-    const std::string uid = fmt::format("{} {}", p.name.empty() ? "light" : p.name, ++piece_count_);
-    for (size_t i = 0; i < p.light_sources.size(); ++i) {
-      const Sh3dLightSource& ls = p.light_sources[i];
-      Light l;
-      l.name = fmt::format("{} bulb {}", uid, i + 1);
-      l.type = LightType::Point;
-      // fractions from the left, front and bottom; our front faces -y
-      const Vec3 local((ls.position.x() - 0.5) * p.width_cm / 100,
-                       (ls.position.y() - 0.5) * p.depth_cm / 100,
-                       ls.position.z() * p.height_cm / 100);
-      l.position = Vec3(c.x(), c.y(), bottom) + yaw * local;
-      l.temperature_k = 2700.f;
-      l.intensity = float(2.0 * (p.power / 0.5) * (p.power / 0.5) / double(p.light_sources.size()));
-      l.on = p.power > 0;
-      scene_.lights.push_back(l);
-      ++report_.lights;
-    }
+  void bareLights(const Sh3dPiece& p, const CatalogPiece& cp) {
     ++report_.pieces;
+    const std::string uid = fmt::format("{} {}", p.name.empty() ? "light" : p.name, ++piece_count_);
+    addLights(p, lampLights(cp, labelCatalogPiece(cp).category), placement(p, nullptr), uid, "");
   }
 
   /// A ceiling light in every room no lamp of the home lights (many homes have none: Sweet
@@ -782,23 +787,9 @@ class Builder {
       sun = sunPosition(when);
     }
     const Vec3 to_sun = sunDirectionWorld(sun, when.north_deg);
-    Light sky;
-    sky.name = "sky";
-    sky.type = LightType::Sky;
-    sky.sky_model = SkyModel::Preetham;
-    sky.direction = -to_sun;
-    sky.turbidity = 3.f;
-    sky.intensity = 40.f;
+    const auto [sky, sun_light] = daylightLights(to_sun, 3.f);
     scene_.lights.push_back(sky);
-    if (sun.elevation > 0) {
-      Light l;
-      l.name = "sun";
-      l.type = LightType::Sun;
-      l.direction = -to_sun;
-      l.temperature_k = 5500.f;
-      l.intensity = 350.f;
-      scene_.lights.push_back(l);
-    }
+    if (sun.elevation > 0) scene_.lights.push_back(sun_light);  // (polar night)
     // the ground, under the lowest floor, 30 m around the home
     const auto [lo, hi] = scene_.bounds();
     const double z = min_elevation_ - 0.05;
@@ -849,8 +840,7 @@ std::string sh3dRoomType(const std::string& name) {
   if (has({"living", "lounge", "salon", "séjour", "sejour", "soggiorno", "salone", "wohn", "sala",
            "family", "客厅", "起居"}))
     return "living_room";
-  if (has({"study", "office", "bureau", "studio", "studio", "arbeits", "despacho", "书房"}))
-    return "study";
+  if (has({"study", "office", "bureau", "studio", "arbeits", "despacho", "书房"})) return "study";
   if (has({"balcon", "terrace", "terrasse", "terrazzo", "veranda", "阳台", "露台"}))
     return "balcony";
   if (has({"hall", "corridor", "couloir", "landing", "stair", "corridoio", "disimpegno", "flur",
@@ -880,11 +870,8 @@ std::string Sh3dImportReport::summary() const {
     parts.push_back(
         fmt::format("{} piece(s) left out: their models draw no surface", empty_models));
   if (!room_names_untyped.empty()) {
-    std::string names;
-    for (size_t i = 0; i < room_names_untyped.size() && i < 5; ++i)
-      names += (i ? ", '" : "'") + room_names_untyped[i] + "'";
     parts.push_back(fmt::format("{} room name(s) match no room type and became living rooms ({})",
-                                room_names_untyped.size(), names));
+                                room_names_untyped.size(), listNames(room_names_untyped, 5)));
   }
   std::string out;
   for (size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];

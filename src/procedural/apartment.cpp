@@ -1212,20 +1212,9 @@ class Builder {
     const double azimuth = rng_.uniformDouble(0, 2 * kPi);
     const Vec3 to_sun(std::cos(elevation) * std::cos(azimuth),
                       std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-    Light sky;
-    sky.name = "sky";
-    sky.type = LightType::Sky;
-    sky.sky_model = SkyModel::Preetham;
-    sky.direction = -to_sun;
-    sky.turbidity = static_cast<float>(rng_.uniformDouble(2.5, 4));
-    sky.intensity = 40.f;
+    const float turbidity = static_cast<float>(rng_.uniformDouble(2.5, 4));
+    const auto [sky, sun] = daylightLights(to_sun, turbidity);
     apt_.scene.lights.push_back(sky);
-    Light sun;
-    sun.name = "sun";
-    sun.type = LightType::Sun;
-    sun.direction = -to_sun;
-    sun.temperature_k = 5500.f;
-    sun.intensity = 350.f;
     apt_.scene.lights.push_back(sun);
   }
 

@@ -41,6 +41,24 @@ const std::vector<std::string>& metalNames() {
   return names;
 }
 
+std::pair<Light, Light> daylightLights(const Vec3& to_sun, float turbidity, float scale,
+                                       const std::string& prefix) {
+  Light sky;
+  sky.name = prefix + "sky";
+  sky.type = LightType::Sky;
+  sky.sky_model = SkyModel::Preetham;
+  sky.direction = -to_sun;
+  sky.turbidity = turbidity;
+  sky.intensity = 40.f * scale;
+  Light sun;
+  sun.name = prefix + "sun";
+  sun.type = LightType::Sun;
+  sun.direction = -to_sun;
+  sun.temperature_k = 5500.f;
+  sun.intensity = 350.f * scale;
+  return {sky, sun};
+}
+
 const char* lightTypeName(LightType t) {
   switch (t) {
     case LightType::Point:

@@ -188,6 +188,13 @@ struct Light {
   Vec3f rgbIntensity() const;
 };
 
+/// The daylight of the procedural apartments: a Preetham sky (40 W/m^2 on an unoccluded
+/// horizontal surface) and a 5500 K sun (350 W/m^2) towards `to_sun` (unit, world), both times
+/// `scale`, named `prefix` + "sky" and `prefix` + "sun". Importers and the automatic lights use
+/// it too, so every source of daylight exposes alike.
+std::pair<Light, Light> daylightLights(const Vec3& to_sun, float turbidity, float scale = 1.f,
+                                       const std::string& prefix = "");
+
 /// Names of light types as written in layout files ("point", "spot", "sun", "sky").
 const char* lightTypeName(LightType t);
 /// Names of sky models as written in layout files ("uniform", "preetham", "envmap").

@@ -293,20 +293,8 @@ void addDaylight(Scene& scene, bool indoors) {
   // the sun 40 degrees up from the south-east, as a late-morning apartment
   const double el = 40.0 * M_PI / 180.0, az = -45.0 * M_PI / 180.0;
   const Vec3 to_sun(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-  Light sky;
-  sky.name = "auto_sky";
-  sky.type = LightType::Sky;
-  sky.sky_model = SkyModel::Preetham;
-  sky.direction = -to_sun;
-  sky.turbidity = 3.f;
-  sky.intensity = 40.f * scale;
+  const auto [sky, sun] = daylightLights(to_sun, 3.f, scale, "auto_");
   scene.lights.push_back(sky);
-  Light sun;
-  sun.name = "auto_sun";
-  sun.type = LightType::Sun;
-  sun.direction = -to_sun;
-  sun.temperature_k = 5500.f;
-  sun.intensity = 350.f * scale;
   scene.lights.push_back(sun);
 }
 

@@ -253,19 +253,40 @@ TEST(Sh3dImport, PiecesArePlacedMirroredAndTurnedAsInThePlan) {
       "<pieceOfFurniture id='c' name='Shelf c' model='0/box.obj' x='100' y='300' width='100' "
       "depth='50' height='200' angle='1.5707964'/>\n"
       "<pieceOfFurniture id='d' name='Shelf d' model='0/box.obj' x='300' y='300' width='100' "
-      "depth='50' height='200' elevation='80' pitch='1.5707964'/>\n";
+      "depth='50' height='200' elevation='80' pitch='1.5707964'/>\n"
+      // a mirrored lamp with its bulb on its left, and a light source drawn as lines only
+      "<light id='e' name='Lamp e' model='0/box.obj' x='500' y='100' width='100' depth='50' "
+      "height='200' modelMirrored='true' power='0.25'><lightSource x='0.2' y='0.5' z='0.9' "
+      "color='FFFFFFFF'/></light>\n"
+      "<light id='f' name='Light source f' model='1/lines.obj' x='500' y='300' width='20' "
+      "depth='20' height='20' elevation='200' power='0.5'><lightSource x='0.5' y='0.5' z='0.5' "
+      "color='FFFFFFFF'/></light>\n";
   const std::string room =
       "<room id='r' name='Living room'><point x='0' y='0'/>"
       "<point x='400' y='0'/><point x='400' y='400'/><point x='0' y='400'/>"
       "</room>";
   const fs::path path = dir.path() / "pieces.sh3d";
-  test::writeZip(
-      path, {{"Home.xml", home(pieces + room)}, {"0/box.obj", postedBoxObj()}, {"0/m.mtl", mtl()}});
+  test::writeZip(path, {{"Home.xml", home(pieces + room)},
+                        {"0/box.obj", postedBoxObj()},
+                        {"0/m.mtl", mtl()},
+                        {"1/lines.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2\nl 2 3\n"}});
   Sh3dImportReport report;
   Sh3dImportOptions opt;
   opt.daylight = false;
+  opt.room_lights = false;
   const Scene s = importSh3d(path.string(), opt, &report);
-  ASSERT_EQ(report.piece_instances.size(), 4u);
+  ASSERT_EQ(report.piece_instances.size(), 5u);  // the line-only light has no objects
+  EXPECT_EQ(report.pieces, 6u);
+  EXPECT_EQ(report.empty_models, 0u);
+  // the mirrored lamp's bulb moved to its right (x = 5 + 0.3), dimmed by its power (0.25 of
+  // Sweet Home 3D's default 0.5: a quarter of a 2 m lamp's, a floor lamp's, 4.5 W/sr); the
+  // line-only light keeps its bulb at its centre
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_NEAR(s.lights[0].position.x(), 5.3, 1e-6);
+  EXPECT_NEAR(s.lights[0].position.y(), -1.0, 1e-6);
+  EXPECT_NEAR(s.lights[0].position.z(), 1.8, 1e-6);
+  EXPECT_NEAR(s.lights[0].intensity, 4.5 / 4, 1e-6);
+  EXPECT_TRUE(s.lights[1].position.isApprox(Vec3(5, -3, 2.1), 1e-9));
   std::map<std::string, int> inst;
   const Sh3dHome h = readSh3dHome(path.string());
   for (const auto& [piece, instance] : report.piece_instances) inst[h.pieces[piece].id] = instance;
