@@ -133,6 +133,25 @@ std::vector<Ring> intersectionRings(const Ring& a, const Ring& b) {
   return out;
 }
 
+FaceWithHoles faceWithHoles(const Ring& outline, const std::vector<Ring>& holes, bool reveals,
+                            double floor_v) {
+  FaceWithHoles out;
+  out.triangles = triangulateDifference(outline, holes);
+  if (!reveals) return out;
+  for (const Ring& h : holes) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& p : h) centre += p;
+    centre /= double(h.size());
+    for (const Ring& r : intersectionRings(h, outline))
+      for (size_t i = 0; i < r.size(); ++i) {
+        const Eigen::Vector2d p = r[i], q = r[(i + 1) % r.size()];
+        if (std::abs(p.y() - floor_v) < 1e-6 && std::abs(q.y() - floor_v) < 1e-6) continue;
+        out.reveals.push_back({p, q, centre - (p + q) / 2});
+      }
+  }
+  return out;
+}
+
 std::vector<Ring> enclosedFaces(const std::vector<std::array<Eigen::Vector2d, 2>>& segments,
                                 double min_area) {
   const Geos g;

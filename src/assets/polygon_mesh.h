@@ -24,6 +24,24 @@ std::vector<Triangle2> triangulatePolygon(const Ring& outer);
 /// of a hole that lies inside a face, whose edges become the hole's reveals.
 std::vector<Ring> intersectionRings(const Ring& a, const Ring& b);
 
+/// One reveal of an opening: an edge (a, b) of the part of a hole inside a face, and the
+/// direction in the face's plane from the edge towards the hole's centre, which the reveal
+/// faces.
+struct RevealEdge {
+  Eigen::Vector2d a, b, inward;
+};
+
+/// A flat face with openings, in its own 2-D frame (u along it, v up): the triangles covering
+/// `outline` minus `holes` and, with `reveals`, the edges of each hole's part inside the
+/// outline, except those lying on v = `floor_v` (a door's sill on the floor, where the room's
+/// floor is drawn and a reveal face would fight with it).
+struct FaceWithHoles {
+  std::vector<Triangle2> triangles;
+  std::vector<RevealEdge> reveals;
+};
+FaceWithHoles faceWithHoles(const Ring& outline, const std::vector<Ring>& holes, bool reveals,
+                            double floor_v);
+
 /// The area of `a` intersected with `b` (>= 0).
 double intersectionArea(const Ring& a, const Ring& b);
 

@@ -508,26 +508,14 @@ class Builder {
       return Vec3(xy.x(), xy.y(), uv.y());
     };
     const Vec3 n3(normal.x(), normal.y(), 0);
-    for (const auto& t : triangulateDifference(outline, holes))
-      tri(m, to3(t[0]), to3(t[1]), to3(t[2]), n3);
-    if (depth <= 0) return;
-    for (const Ring& h : holes) {
-      V2 centre = V2::Zero();
-      for (const V2& p : h) centre += p;
-      centre /= double(h.size());
-      for (const Ring& r : intersectionRings(h, outline)) {
-        for (size_t i = 0; i < r.size(); ++i) {
-          const V2 p = r[i], q = r[(i + 1) % r.size()];
-          // a door's edge on the wall's bottom: no threshold face, the room floors are drawn
-          // at that height and would fight with it
-          if (std::abs(p.y() - z0) < 1e-6 && std::abs(q.y() - z0) < 1e-6) continue;
-          const Vec3 p3 = to3(p), q3 = to3(q);
-          const Vec3 through = -n3 * depth;
-          const V2 mid = (p + q) / 2;
-          const Vec3 inward = to3(centre) - to3(mid);
-          quad(m, p3, q3, q3 + through, p3 + through, inward);
-        }
-      }
+    // a door's edge on the wall's bottom gets no reveal
+    const FaceWithHoles f = faceWithHoles(outline, holes, depth > 0, z0);
+    for (const auto& t : f.triangles) tri(m, to3(t[0]), to3(t[1]), to3(t[2]), n3);
+    for (const RevealEdge& r : f.reveals) {
+      const Vec3 p3 = to3(r.a), q3 = to3(r.b);
+      const Vec3 through = -n3 * depth;
+      const Vec3 inward(e.x() * r.inward.x(), e.y() * r.inward.x(), r.inward.y());
+      quad(m, p3, q3, q3 + through, p3 + through, inward);
     }
   }
 

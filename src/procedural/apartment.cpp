@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 
 #include "assets/catalog_library.h"
+#include "assets/polygon_mesh.h"
+#include "assets/svg_path.h"
 #include "core/error.h"
 #include "procedural/furniture.h"
 #include "procedural/procedural_textures.h"
@@ -79,8 +81,9 @@ struct RoomState {
   int index = -1;
   Box2 interior;
   std::vector<Box2> door_zones;
-  std::vector<Box2> window_zones;  ///< strips in front of windows (tall pieces stay out)
-  std::vector<Box2> floor_boxes;   ///< footprints of floor pieces (not rugs)
+  std::vector<Box2> window_zones;    ///< strips in front of windows (tall pieces stay out)
+  std::vector<double> window_clear;  ///< per zone: floor pieces taller than this stay out
+  std::vector<Box2> floor_boxes;     ///< footprints of floor pieces (not rugs)
   double occupied = 0;
   std::vector<int> supports;  ///< piece indices with support surfaces
 };
@@ -97,7 +100,8 @@ class Builder {
     if (opt.random_style) {  // its own stream, so the rest of the apartment draws the same numbers
       CounterRng style_rng(opt.seed, RngStream::Layout, 2, 0, 0);
       const auto& all = decorStyles();
-      style_ = all[std::min(all.size() - 1, static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
+      style_ = all[std::min(all.size() - 1,
+                            static_cast<size_t>(style_rng.uniformDouble() * all.size()))];
     }
   }
 
@@ -121,6 +125,7 @@ class Builder {
       r.ceiling_z = plan.ceiling;
       apt_.scene.rooms.push_back(r);
     }
+    if (library_) catalogOpenings();
     shell();
     for (size_t i = 0; i < plan.rooms.size(); ++i) furnish(static_cast<int>(i));
     if (opt_.daylight) daylight();
@@ -434,28 +439,40 @@ class Builder {
           merged.push_back(s);
       }
       for (auto [lo, hi] : merged) {
-        // openings on this stretch: (from, to, bottom, top)
-        std::vector<std::array<double, 4>> holes;
-        for (const PlanDoor& d : plan.doors)
+        // openings on this stretch: (from, to, bottom, top) and a catalog piece's cut-out
+        // shape when it is not the whole rectangle
+        struct Hole {
+          double from, to, bottom, top;
+          const std::vector<Ring>* shape;
+        };
+        std::vector<Hole> holes;
+        for (size_t i = 0; i < plan.doors.size(); ++i) {
+          const PlanDoor& d = plan.doors[i];
           if (d.vertical == l.vertical && std::fabs(d.line - l.at) < 1e-9 && d.from >= lo &&
               d.to <= hi)
-            holes.push_back({d.from, d.to, 0.0, d.height});
-        for (const PlanWindow& w : plan.windows)
+            holes.push_back({d.from, d.to, 0.0, d.height, cutOut(door_openings_, i)});
+        }
+        for (size_t i = 0; i < plan.windows.size(); ++i) {
+          const PlanWindow& w = plan.windows[i];
           if (w.vertical == l.vertical && std::fabs(w.line - l.at) < 1e-9 && w.from >= lo &&
               w.to <= hi)
-            holes.push_back({w.from, w.to, w.sill, w.top});
-        std::sort(holes.begin(), holes.end());
+            holes.push_back({w.from, w.to, w.sill, w.top, cutOut(window_openings_, i)});
+        }
+        std::sort(holes.begin(), holes.end(),
+                  [](const Hole& a, const Hole& b) { return a.from < b.from; });
         auto piece = [&](double a, double b, double z0, double z1) {
           const Vec3 lo3 = l.vertical ? Vec3(l.at - t / 2, a, z0) : Vec3(a, l.at - t / 2, z0);
           const Vec3 hi3 = l.vertical ? Vec3(l.at + t / 2, b, z1) : Vec3(b, l.at + t / 2, z1);
           box("wall", "wall", 1, -1, wall, lo3, hi3);
         };
         double cursor = lo - t / 2;  // close the corners
-        for (const auto& h : holes) {
-          piece(cursor, h[0], 0, H);
-          if (h[2] > 0) piece(h[0], h[1], 0, h[2]);
-          piece(h[0], h[1], h[3], H);
-          cursor = h[1];
+        for (const Hole& h : holes) {
+          piece(cursor, h.from, 0, H);
+          if (h.bottom > 0) piece(h.from, h.to, 0, h.bottom);
+          piece(h.from, h.to, h.top, H);
+          if (h.shape)
+            shapedOpening(l.vertical, l.at, h.from, h.to, h.bottom, h.top, *h.shape, wall);
+          cursor = h.to;
         }
         piece(cursor, hi + t / 2, 0, H);
       }
@@ -524,16 +541,30 @@ class Builder {
     // front door (closed) and windows, reaching 5 mm into the wall round their openings: a gap
     // of even 1 cm (or a crack between coincident faces) lets daylight leak in and shows the
     // void outside as unlabelled pixels
-    for (const PlanDoor& d : plan.doors) {
+    for (size_t i = 0; i < plan.doors.size(); ++i) {
+      const PlanDoor& d = plan.doors[i];
       if (d.b >= 0 || !known("door")) continue;
+      if (auto it = door_openings_.find(i); it != door_openings_.end()) {
+        inWallCatalog(it->second, "door", d.vertical, d.line, 0.5 * (d.from + d.to), 0.0,
+                      d.to - d.from + 2 * kInWallOverlap, d.height + kInWallOverlap, d.a);
+        continue;
+      }
       FurnitureSizeHint hint;
       hint.width = d.to - d.from + 2 * kInWallOverlap;
       hint.height = d.height + kInWallOverlap;
       FurnitureModel m = make("door", hint);
       inWall(m, d.vertical, d.line, 0.5 * (d.from + d.to), 0.0, d.a);
     }
-    for (const PlanWindow& w : plan.windows) {
+    for (size_t i = 0; i < plan.windows.size(); ++i) {
+      const PlanWindow& w = plan.windows[i];
       if (!known("window")) continue;
+      if (auto it = window_openings_.find(i); it != window_openings_.end()) {
+        const double below = w.sill > 0 ? kInWallOverlap : 0.0;
+        inWallCatalog(it->second, "window", w.vertical, w.line, 0.5 * (w.from + w.to),
+                      w.sill - below, w.to - w.from + 2 * kInWallOverlap,
+                      w.top - w.sill + kInWallOverlap + below, w.room);
+        continue;
+      }
       FurnitureSizeHint hint;
       hint.width = w.to - w.from + 2 * kInWallOverlap;
       hint.height = w.top - w.sill + 2 * kInWallOverlap;
@@ -555,6 +586,191 @@ class Builder {
     const Vec3 pos = vertical ? Vec3(line, centre, z) : Vec3(centre, line, z);
     const int piece = add(m, placement(pos, wallYaw(side)), room, false);
     apt_.pieces[piece].rests_on = "wall";
+  }
+
+  // ---- catalog doors and windows ----
+
+  /// A Sweet Home 3D door or window chosen for a plan opening: its model and catalog entry,
+  /// and its cut-out shape (unit square, y down) when that is not the whole rectangle.
+  struct CatalogOpening {
+    std::shared_ptr<const CatalogModel> model;
+    const CatalogPiece* piece = nullptr;
+    std::vector<Ring> shape;  ///< empty: the rectangle
+  };
+
+  static const std::vector<Ring>* cutOut(const std::map<size_t, CatalogOpening>& openings,
+                                         size_t i) {
+    auto it = openings.find(i);
+    return it == openings.end() || it->second.shape.empty() ? nullptr : &it->second.shape;
+  }
+
+  /// Chooses catalog windows for the plan's windows and a catalog front door (all of them
+  /// with FurnitureSource::Catalog, each with even odds with Mixed) and fits the openings to
+  /// them: the width stays the plan's, the height becomes the model's within -15 % .. +20 %
+  /// of its own, under the same top for a window (the sill moves; a French window reaches
+  /// down to the floor) and from the floor for a door. Interior doorways stay open: a closed
+  /// door would block the camera paths through them.
+  void catalogOpenings() {
+    FloorPlan& plan = apt_.plan;
+    for (size_t i = 0; i < plan.windows.size(); ++i) {
+      PlanWindow& w = plan.windows[i];
+      double h = w.top - w.sill;
+      auto o = catalogOpening("window", w.to - w.from, h, w.top);
+      if (!o) continue;
+      w.sill = w.top - h < 0.03 ? 0.0 : w.top - h;
+      window_openings_[i] = std::move(*o);
+    }
+    for (size_t i = 0; i < plan.doors.size(); ++i) {
+      PlanDoor& d = plan.doors[i];
+      if (d.b >= 0) continue;
+      double h = d.height;
+      auto o = catalogOpening("door", d.to - d.from, h, plan.ceiling - 0.3);
+      if (!o) continue;
+      d.height = h;
+      door_openings_[i] = std::move(*o);
+    }
+  }
+
+  /// A catalog door or window of our `category` for an opening `width` wide: among the
+  /// pieces with door-or-window data whose own width is within 1/1.4 .. 1/0.75 of it and whose
+  /// height, moved towards `height` by at most -15 % / +20 %, stays under `max_height`.
+  /// Sets `height` to the chosen piece's. Draws from its own stream.
+  std::optional<CatalogOpening> catalogOpening(const std::string& category, double width,
+                                               double& height, double max_height) {
+    CounterRng pick(opt_.seed, RngStream::Layout, 5, static_cast<uint32_t>(++opening_draws_), 0);
+    if (opt_.furniture == FurnitureSource::Mixed && pick.uniform() < 0.5f) return std::nullopt;
+    std::vector<std::pair<const CatalogPiece*, double>> fits;
+    for (const CatalogPiece* p : library_->byCategory(category)) {
+      if (!p->door_or_window) continue;
+      const double sw = width / (p->width_cm / 100), mh = p->height_cm / 100;
+      const double h = std::clamp(height, 0.85 * mh, 1.2 * mh);
+      if (sw < 0.75 || sw > 1.4 || h > max_height) continue;
+      fits.push_back({p, h});
+    }
+    if (fits.empty()) return std::nullopt;
+    const auto& [piece, h] =
+        fits[std::min(fits.size() - 1, static_cast<size_t>(pick.uniformDouble() * fits.size()))];
+    CatalogOpening o;
+    o.piece = piece;
+    o.model = library_->model(piece->id, library_->dir(), "--furniture catalog");
+    const std::string& svg = piece->door_or_window->cut_out_shape;
+    if (!svg.empty()) {
+      for (const Outline2d& r :
+           parseSvgPath(svg, 0.01, library_->dir(), piece->id + " cutOutShape"))
+        o.shape.push_back(r);
+      // the whole unit square is the plain rectangular hole
+      if (o.shape.size() == 1 && std::abs(std::abs(outlineArea(o.shape[0])) - 1.0) < 1e-6)
+        o.shape.clear();
+    }
+    height = h;
+    return o;
+  }
+
+  /// Places catalog door or window `o` in its opening (`width` along the wall at `centre`,
+  /// bottom `z`, `height` tall), scaled to it, its wall part (CatalogDoorOrWindow: thickness
+  /// and distance from its back) scaled to the wall's thickness and centred in it, its front
+  /// towards room `room`, as Sweet Home 3D fits a door or window to the wall it is dropped in.
+  void inWallCatalog(const CatalogOpening& o, const std::string& category, bool vertical,
+                     double line, double centre, double z, double width, double height, int room) {
+    const CatalogModel& c = *o.model;
+    const CatalogDoorOrWindow& dw = *o.piece->door_or_window;
+    const double depth = c.size.y();
+    const double thick = dw.wall_thickness_cm > 0 ? dw.wall_thickness_cm / 100 : depth;
+    const double sy = std::clamp(apt_.plan.wall_thickness / thick, 0.25, 4.0);
+    // the wall part's centre in the model frame (front -y, back +y)
+    const double y_wall = depth / 2 - dw.wall_distance_cm / 100 - thick / 2;
+    const Box2& rb = apt_.plan.rooms[room].box;
+    const int side = vertical ? (std::fabs(line - rb.min().x()) < 1e-9 ? 0 : 1)
+                              : (std::fabs(line - rb.min().y()) < 1e-9 ? 2 : 3);
+    const double yaw = wallYaw(side);
+    const Vec3 on_line = vertical ? Vec3(line, centre, z) : Vec3(centre, line, z);
+    const Vec3 origin = on_line - Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Vec3(0, sy * y_wall, 0);
+    Mat4 S = Mat4::Identity();
+    S.diagonal().head<3>() = Vec3(width / c.size.x(), sy, height / c.size.z());
+    FurnitureModel m;
+    m.category = category;
+    m.catalog = o.model;
+    m.nyu40 = c.label.nyu40;
+    m.size = c.size;
+    m.hulls = c.hulls;
+    m.mass_kg = c.mass_kg;
+    m.friction = c.friction;
+    m.movable = false;
+    const int piece = add(m, placement(origin, yaw) * S, room, false);
+    apt_.pieces[piece].rests_on = "wall";
+  }
+
+  /// The wall round a shaped cut-out: [a, b] x [z0, z1] of the wall on line `at` minus
+  /// `shape` (unit square, y down, stretched over it), both faces and the reveals through the
+  /// wall, in the wall's material.
+  void shapedOpening(bool vertical, double at, double a, double b, double z0, double z1,
+                     const std::vector<Ring>& shape, const MaterialSpec& spec) {
+    using V2 = Eigen::Vector2d;
+    const double t = apt_.plan.wall_thickness;
+    const Ring outline = {V2(a, z0), V2(b, z0), V2(b, z1), V2(a, z1)};
+    std::vector<Ring> holes;
+    for (const Ring& r : shape) {
+      Ring h;
+      for (const V2& q : r) h.emplace_back(a + q.x() * (b - a), z1 - q.y() * (z1 - z0));
+      holes.push_back(std::move(h));
+    }
+    const FaceWithHoles f = faceWithHoles(outline, holes, true, 0.0);
+    const int mat = material(spec);
+    auto tile_it = tile_.find(spec.name);
+    const float tile = tile_it == tile_.end() ? 1.f : static_cast<float>(tile_it->second);
+    // (u, v) of the face at `off` across the wall, in world space
+    auto at3 = [&](const V2& p, double off) {
+      return vertical ? Vec3(at + off, p.x(), p.y()) : Vec3(p.x(), at + off, p.y());
+    };
+    const Vec3 across = vertical ? Vec3::UnitX() : Vec3::UnitY();
+    Mesh mesh;
+    // a triangle facing `normal`; texture coordinates in metres along the wall and up
+    auto tri = [&](const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& normal) {
+      const Vec3 n = (q - p).cross(r - p);
+      if (n.norm() < 1e-12) return;
+      const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+      for (const Vec3* x : {&p, &q, &r}) {
+        mesh.positions.push_back(x->cast<float>());
+        const double u = vertical ? x->y() + x->x() - at : x->x() + x->y() - at;
+        mesh.uvs.emplace_back(static_cast<float>(u) / tile, static_cast<float>(x->z()) / tile);
+      }
+      if (n.dot(normal) >= 0)
+        mesh.triangles.emplace_back(base, base + 1, base + 2);
+      else
+        mesh.triangles.emplace_back(base, base + 2, base + 1);
+    };
+    for (const Triangle2& tr : f.triangles)
+      for (double sgn : {-1.0, 1.0})
+        tri(at3(tr[0], sgn * t / 2), at3(tr[1], sgn * t / 2), at3(tr[2], sgn * t / 2),
+            sgn * across);
+    for (const RevealEdge& r : f.reveals) {
+      const Vec3 inward = at3(r.inward, 0) - at3(V2::Zero(), 0);
+      const Vec3 p0 = at3(r.a, t / 2), p1 = at3(r.b, t / 2), q0 = at3(r.a, -t / 2),
+                 q1 = at3(r.b, -t / 2);
+      tri(p0, p1, q1, inward);
+      tri(p0, q1, q0, inward);
+    }
+    if (mesh.triangles.empty()) return;
+    const std::string name = fmt::format("wall_{}", ++count_["wall"]);
+    mesh.id = name;
+    apt_.scene.meshes.push_back(std::move(mesh));
+    Object obj = Object::make(name, static_cast<int>(apt_.scene.meshes.size()) - 1, mat,
+                              Mat4::Identity(), 1, ++instances_);
+    obj.kind = "wall";
+    obj.part = "wall";
+    PhysicsProps phys;
+    phys.mass_kg = 45;
+    phys.friction = 0.2f;
+    obj.physics = phys;
+    apt_.scene.objects.push_back(std::move(obj));
+    PlacedPiece p;
+    p.name = name;
+    p.category = "wall";
+    p.instance = instances_;
+    Eigen::AlignedBox3d hull(at3(V2(a, z0), -t / 2));
+    hull.extend(at3(V2(b, z1), t / 2));
+    p.hulls = {hull};
+    apt_.pieces.push_back(p);
   }
 
   // ---- furnishing ----
@@ -584,8 +800,13 @@ class Builder {
       if (d.a == i || d.b == i) {
         s.door_zones.push_back(zone(d.vertical, d.line, d.from - 0.15, d.to + 0.15, kDoorZone));
       }
-    for (const PlanWindow& w : plan.windows)
-      if (w.room == i) s.window_zones.push_back(zone(w.vertical, w.line, w.from, w.to, 0.45));
+    for (size_t k = 0; k < plan.windows.size(); ++k) {
+      const PlanWindow& w = plan.windows[k];
+      if (w.room != i) continue;
+      s.window_zones.push_back(zone(w.vertical, w.line, w.from, w.to, 0.45));
+      // below a catalog window's sill (French windows reach nearly to the floor)
+      s.window_clear.push_back(window_openings_.count(k) ? std::min(0.85, w.sill - 0.02) : 0.85);
+    }
     return s;
   }
 
@@ -607,9 +828,8 @@ class Builder {
       if (overlaps(fp, z)) return false;
     for (const Box2& o : s.floor_boxes)
       if (overlaps(fp, o, -0.02)) return false;  // 2 cm gap at least
-    if (height > 0.85)
-      for (const Box2& z : s.window_zones)
-        if (overlaps(fp, z)) return false;
+    for (size_t k = 0; k < s.window_zones.size(); ++k)
+      if (height > s.window_clear[k] && overlaps(fp, s.window_zones[k])) return false;
     return true;
   }
 
@@ -896,7 +1116,8 @@ class Builder {
       const Eigen::Vector2d lo = top.min() + half + Eigen::Vector2d::Constant(margin);
       const Eigen::Vector2d hi = top.max() - half - Eigen::Vector2d::Constant(margin);
       if ((hi - lo).minCoeff() < 0) return -1;
-      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()), rng_.uniformDouble(lo.y(), hi.y()));
+      const Eigen::Vector2d c(rng_.uniformDouble(lo.x(), hi.x()),
+                              rng_.uniformDouble(lo.y(), hi.y()));
       const Box2 fp = footprint(c, m.size.x(), m.size.y(), yaw);
       bool clash = false;
       for (const Box2& o : on_support_[support]) clash = clash || overlaps(fp, o, -0.01);
@@ -1231,6 +1452,9 @@ class Builder {
   std::map<int, std::vector<Box2>> on_support_;
   std::shared_ptr<const CatalogLibrary> library_;  ///< null: parametric furniture only
   uint64_t catalog_draws_ = 0;
+  uint64_t opening_draws_ = 0;
+  std::map<size_t, CatalogOpening> window_openings_;  ///< by plan window
+  std::map<size_t, CatalogOpening> door_openings_;    ///< by plan door (the front door)
   int instances_ = 0;
   int sphere_ = -1;
 };

@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 
+#include "../segment_hits.h"
 #include "../temp_dir.h"
 #include "apartment_checks.h"
 #include "assets/catalog_library.h"
@@ -49,16 +50,82 @@ int seedsFromEnv(int fallback) {
   return e && std::atoi(e) > 0 ? std::atoi(e) : fallback;
 }
 
+/// Doors and windows found in an apartment's openings.
+struct OpeningCounts {
+  size_t windows = 0, catalog_windows = 0, shaped_windows = 0, catalog_doors = 0;
+};
+
+/// Every window opening and the front door are open through the wall at their centre, the
+/// wall is closed below and above them, a catalog model fills its opening (a segment through
+/// the centre crosses it), and an arched window's cut follows the arch (the wall is closed in
+/// the opening's top corners).
+void checkOpenings(const Apartment& apt, OpeningCounts& n) {
+  const FloorPlan& plan = apt.plan;
+  const int kWall = 1, kWindow = 9, kDoor = 8;
+  // the piece standing in opening [from, to] of a wall line
+  auto pieceAt = [&](const std::string& category, bool vertical, double line, double from,
+                     double to) -> const PlacedPiece* {
+    for (const PlacedPiece& p : apt.pieces) {
+      if (p.category != category) continue;
+      Eigen::AlignedBox3d b;
+      for (const auto& h : p.hulls) b.extend(h);
+      const Eigen::Vector3d c = b.center();
+      const double along = vertical ? c.y() : c.x(), across = vertical ? c.x() : c.y();
+      if (along > from && along < to && std::abs(across - line) < 0.2) return &p;
+    }
+    return nullptr;
+  };
+  // a segment across the wall at (u along it, z)
+  auto through = [&](bool vertical, double line, double u, double z, int nyu40) {
+    const Vec3 a = vertical ? Vec3(line - 0.3, u, z) : Vec3(u, line - 0.3, z);
+    const Vec3 b = vertical ? Vec3(line + 0.3, u, z) : Vec3(u, line + 0.3, z);
+    return test::segmentHits(apt.scene, a, b, nyu40);
+  };
+  for (const PlanWindow& w : plan.windows) {
+    ++n.windows;
+    const double mid = 0.5 * (w.from + w.to), zmid = 0.5 * (w.sill + w.top);
+    EXPECT_FALSE(through(w.vertical, w.line, mid, zmid, kWall)) << "window opening closed";
+    if (w.sill > 0.1) EXPECT_TRUE(through(w.vertical, w.line, mid, w.sill - 0.05, kWall));
+    EXPECT_TRUE(through(w.vertical, w.line, mid, w.top + 0.05, kWall)) << "above a window";
+    const PlacedPiece* p = pieceAt("window", w.vertical, w.line, w.from, w.to);
+    ASSERT_NE(p, nullptr) << "no window in the opening at " << mid;
+    if (p->catalog_piece.empty()) continue;
+    ++n.catalog_windows;
+    EXPECT_TRUE(through(w.vertical, w.line, mid, zmid, kWindow)) << p->catalog_piece;
+    if (p->catalog_piece.find("arched") != std::string::npos) {
+      ++n.shaped_windows;
+      const double inset = 0.03 * (w.to - w.from);
+      EXPECT_TRUE(through(w.vertical, w.line, w.from + inset, w.top - 0.02, kWall))
+          << p->catalog_piece << ": the cut follows the arch";
+      EXPECT_TRUE(through(w.vertical, w.line, w.to - inset, w.top - 0.02, kWall));
+      EXPECT_FALSE(through(w.vertical, w.line, mid, w.top - 0.02, kWall)) << "arch top open";
+    }
+  }
+  for (const PlanDoor& d : plan.doors) {
+    const double mid = 0.5 * (d.from + d.to);
+    EXPECT_FALSE(through(d.vertical, d.line, mid, 1.0, kWall)) << "doorway closed";
+    EXPECT_TRUE(through(d.vertical, d.line, mid, d.height + 0.05, kWall)) << "above a door";
+    if (d.b >= 0) continue;
+    const PlacedPiece* p = pieceAt("door", d.vertical, d.line, d.from, d.to);
+    ASSERT_NE(p, nullptr) << "no front door";
+    if (p->catalog_piece.empty()) continue;
+    ++n.catalog_doors;
+    EXPECT_TRUE(through(d.vertical, d.line, mid, 1.0, kDoor)) << p->catalog_piece;
+  }
+}
+
 /// The acceptance over `n` seeds: every layout rule, and how much of the furniture is real.
 void acceptance(int n) {
   TempDir dir;
   std::set<std::string> distinct;
   size_t pieces = 0, catalog_pieces = 0;
+  OpeningCounts openings;
   const auto t0 = std::chrono::steady_clock::now();
   for (uint64_t seed = 0; seed < uint64_t(n); ++seed) {
     SCOPED_TRACE(seed);
     Apartment apt = buildCatalog(seed, dir.path() / std::to_string(seed), dir.path() / "textures");
     test::checkApartment(apt);
+    checkOpenings(apt, openings);
     if (::testing::Test::HasFailure()) return;
     for (const PlacedPiece& p : apt.pieces) {
       static const std::set<std::string> shell = {"wall",     "floor", "ceiling", "ground",
@@ -75,7 +142,14 @@ void acceptance(int n) {
       "from the catalogs (doors, windows, curtains not counted), %.1f layouts/s with "
       "the checks\n",
       n, distinct.size(), catalog_pieces, pieces, 100 * share, n / s);
+  std::printf("%zu windows, %zu catalog models (%zu arched), %zu catalog front doors of %d\n",
+              openings.windows, openings.catalog_windows, openings.shaped_windows,
+              openings.catalog_doors, n);
   EXPECT_GE(share, 0.6);
+  // every window and front door with a fitting model is a catalog one; some are arched
+  EXPECT_GE(openings.catalog_windows, openings.windows * 8 / 10);
+  EXPECT_GE(openings.catalog_doors, size_t(n) * 8 / 10);
+  if (n >= 20) EXPECT_GT(openings.shaped_windows, 0u);
   if (n >= 1000) {
     EXPECT_GE(distinct.size(), 300u);
   }
