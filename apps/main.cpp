@@ -11,7 +11,8 @@ int main(int argc, char** argv) {
       "NYU40 labels, instances, albedo, Kinect-like depth, optical flow, 3D boxes, IMU, events, "
       "stereo) along realistic camera trajectories, for SLAM and scene understanding; "
       "procedural apartments or imported scenes; SLAM scoring (ATE, RPE).\n"
-      "Run 'interiornet generate' for a 25-frame sequence of the built-in room, or "
+      "Run 'interiornet generate' for a 25-frame sequence of the built-in apartment (the built-in "
+      "room without Sweet Home 3D's catalogs), or "
       "'interiornet SUBCOMMAND --help' for details."};
   app.require_subcommand(1);
   // layouts may name Sweet Home 3D catalog models; nothing is read until one does

@@ -21,6 +21,7 @@
 #include <set>
 
 #include "core/atomic_file.h"
+#include "core/color.h"
 #include "core/error.h"
 
 namespace fs = std::filesystem;
@@ -429,6 +430,21 @@ ImageF readExr(const fs::path& path, const std::vector<std::string>& channel_nam
   std::string present;
   for (const auto& n : exrChannelNames(path)) present += (present.empty() ? "" : ", ") + n;
   throw InputError(path.string(), "", "EXR lacks channel(s) " + missing + "; it has: " + present);
+}
+
+Eigen::Vector3d meanLinearRgb(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const ImageU8 img = ext == ".jpg" || ext == ".jpeg" ? readJpeg8(path) : readPng8(path);
+  double table[256];
+  for (int i = 0; i < 256; ++i) table[i] = srgbEotf(i / 255.0);
+  const int grey = img.channels < 3;  // 1 or 2 channels: grey (+ alpha)
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int k = 0; k < 3; ++k) sum[k] += table[img.at(x, y, grey ? 0 : k)];
+  const double n = static_cast<double>(img.width) * img.height;
+  return n > 0 ? Eigen::Vector3d(sum / n) : Eigen::Vector3d::Constant(0.5);
 }
 
 }  // namespace inet

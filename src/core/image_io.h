@@ -10,6 +10,7 @@
 //    thread-dependent compression);
 //  - reports failure (unwritable folder, full disk, bad image shape) as InputError naming the path.
 // Readers throw InputError naming the file for a missing, truncated or unexpected file.
+#include <Eigen/Core>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,6 +37,11 @@ ImageU16 readPng16(const std::filesystem::path& path);
 /// channels of 8-bit values as stored (sRGB-encoded for ordinary photographs). CMYK/YCCK files, a
 /// missing, truncated or corrupt file are InputErrors naming the path; libjpeg never exits.
 ImageU8 readJpeg8(const std::filesystem::path& path);
+
+/// The mean colour of an 8-bit PNG or JPEG (by extension: .jpg/.jpeg in any case, else PNG) as
+/// linear RGB: sRGB-decoded, a grey image's one channel repeated, alpha ignored. Throws as the
+/// readers. For statistics of textures (how bright or warm a material looks).
+Eigen::Vector3d meanLinearRgb(const std::filesystem::path& path);
 
 /// Writes a baseline JPEG (1 channel grey, 3 channels RGB, sRGB-encoded values as given) at
 /// `quality` 1..100, atomically. InputError naming the path for other channel counts or an

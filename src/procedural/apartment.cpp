@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <queue>
 #include <set>
@@ -15,6 +16,7 @@
 #include "assets/polygon_mesh.h"
 #include "assets/svg_path.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "procedural/furniture.h"
 #include "procedural/procedural_textures.h"
 #include "scene/nyu40.h"
@@ -878,8 +880,17 @@ class Builder {
     if (opt_.furniture == FurnitureSource::Mixed && pick.uniform() < 0.5f) return d;
     const auto& fits = catalogFits(*library_, category);
     if (fits.empty()) return d;
-    const auto& chosen =
-        fits[std::min(fits.size() - 1, static_cast<size_t>(pick.uniformDouble() * fits.size()))];
+    // a category the catalogs hold one model of (the living-room rug) is not that model in
+    // every home: our parametric one, itself varied, keeps half of them
+    if (fits.size() == 1 && pick.uniform() < 0.5f) return d;
+    size_t k = std::min(fits.size() - 1, static_cast<size_t>(pick.uniformDouble() * fits.size()));
+    if (style_ != DecorStyle::Any) {  // drawn in proportion to how the style likes them
+      std::vector<double> weight(fits.size());
+      for (size_t i = 0; i < fits.size(); ++i) weight[i] = catalogStyleWeight(*fits[i], style_);
+      double u = pick.uniformDouble() * std::accumulate(weight.begin(), weight.end(), 0.0);
+      for (k = 0; k + 1 < fits.size() && u >= weight[k]; ++k) u -= weight[k];
+    }
+    const auto& chosen = fits[k];
     d.parametric = std::move(d.model);
     d.model = fromCatalog(*d.parametric, chosen);
     return d;
@@ -935,6 +946,48 @@ class Builder {
       if (model->stretch <= 1.6) fits.push_back(std::move(model));
     }
     return cache[{&library, category}] = std::move(fits);
+  }
+
+  /// How much decoration `style` likes catalog model `c`: styleWeight (furniture.h) of each of
+  /// its materials, with the albedo times its texture's mean colour, averaged over the area of
+  /// the surfaces made of it; glass is left out. A texture that cannot be read counts as mid
+  /// grey. Computed once per model and style.
+  static double catalogStyleWeight(const CatalogModel& c, DecorStyle style) {
+    static std::mutex mutex;
+    static std::map<std::pair<const CatalogModel*, DecorStyle>, double> cache;
+    {
+      std::lock_guard lock(mutex);
+      auto it = cache.find({&c, style});
+      if (it != cache.end()) return it->second;
+    }
+    double area_sum = 0, weighted = 0;
+    for (const Object& o : c.parts.objects) {
+      const Material& mat = c.parts.materials[size_t(o.material)];
+      if (mat.type == MaterialType::Dielectric || mat.type == MaterialType::ThinDielectric)
+        continue;
+      const Mesh& mesh = c.parts.meshes[size_t(o.mesh)];
+      double area = 0;
+      for (const Tri& t : mesh.triangles)
+        area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
+                          .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+                          .norm();
+      MaterialSpec spec;
+      spec.type = mat.type;
+      spec.albedo = mat.albedo;
+      if (!mat.albedo_texture.empty()) {
+        Eigen::Vector3d mean = Eigen::Vector3d::Constant(0.5);
+        try {
+          mean = meanLinearRgb(mat.albedo_texture.path);
+        } catch (const std::exception&) {
+        }
+        spec.albedo = spec.albedo.cwiseProduct(mean.cast<float>());
+      }
+      area_sum += area;
+      weighted += area * styleWeight(style, spec);
+    }
+    const double w = area_sum > 0 ? weighted / area_sum : 1.0;
+    std::lock_guard lock(mutex);
+    return cache[{&c, style}] = w;
   }
 
   /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
@@ -1392,6 +1445,82 @@ class Builder {
       onWall(s, "towel");
     }
     ceilingLight(s);
+    if (library_) people(s, type);  // after the light, which may hang low
+  }
+
+  /// The catalog's people (NYU40 person) a furnisher may stand in a room: `adults` standing
+  /// (taller than 1.4 m) and `kids` ("boy", "girl": standing, or sitting on the floor, under
+  /// 1 m tall). Figures sitting on a seat or lying on a bed, and mannequins, are left out.
+  /// Computed once per library, in catalog order.
+  struct People {
+    std::vector<std::shared_ptr<const CatalogModel>> adults, kids;
+  };
+  static const People& catalogPeople(const CatalogLibrary& library) {
+    static std::mutex mutex;
+    static std::map<const CatalogLibrary*, People> cache;
+    std::lock_guard lock(mutex);
+    auto it = cache.find(&library);
+    if (it != cache.end()) return it->second;
+    People people;
+    const int person = *nyu40FromName("person");
+    for (const FurnitureCatalog& cat : library.catalogs())
+      for (const CatalogPiece& p : cat.pieces) {
+        if (!p.isInterior() || library.label(p.id).nyu40 != person) continue;
+        std::string name = p.name;
+        std::transform(name.begin(), name.end(), name.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        auto has = [&](const char* w) { return name.find(w) != std::string::npos; };
+        if (has("mannequin") || has("lying")) continue;
+        const bool kid = has("boy") || has("girl"), sitting = has("sitting");
+        if (kid && (!sitting || p.height_cm < 100))
+          people.kids.push_back(library.model(p.id, library.dir(), "--furniture catalog"));
+        else if (!kid && !sitting && p.height_cm > 140)
+          people.adults.push_back(library.model(p.id, library.dir(), "--furniture catalog"));
+      }
+    return cache[&library] = std::move(people);
+  }
+
+  /// Sometimes someone is at home: in a living room, dining room, kitchen, bedroom or study,
+  /// with odds 0.35, one catalog person (a child in a kids' room) stands on free floor 0.4 m
+  /// or more from the walls, facing the room's centre, under every floor rule (free floor,
+  /// reachability). People are not moved by rearrangements. Draws from its own stream.
+  void people(RoomState& s, const std::string& type) {
+    static const std::set<std::string> lived_in = {
+        "living_room",    "dining_room", "kitchen",      "master_bedroom",
+        "second_bedroom", "kids_room",   "elderly_room", "study"};
+    if (!lived_in.count(type)) return;
+    CounterRng r(opt_.seed, RngStream::Layout, 6, static_cast<uint32_t>(s.index), 0);
+    if (r.uniform() >= 0.35f) return;
+    const People& all = catalogPeople(*library_);
+    const auto& pool = type == "kids_room" ? all.kids : all.adults;
+    if (pool.empty()) return;
+    const auto& c =
+        pool[std::min(pool.size() - 1, static_cast<size_t>(r.uniform() * pool.size()))];
+    FurnitureModel m;
+    m.category = "person";
+    m.catalog = c;
+    m.nyu40 = c->label.nyu40;
+    m.size = c->size;
+    m.hulls = c->hulls;
+    m.mass_kg = c->mass_kg;
+    m.friction = c->friction;
+    m.movable = false;
+    const Box2 area(s.interior.min() + Eigen::Vector2d::Constant(0.4),
+                    s.interior.max() - Eigen::Vector2d::Constant(0.4));
+    if (area.isEmpty()) return;
+    for (int attempt = 0; attempt < 24; ++attempt) {
+      const Eigen::Vector2d p(r.uniformDouble(area.min().x(), area.max().x()),
+                              r.uniformDouble(area.min().y(), area.max().y()));
+      // of the four turns, the one whose front (model -y) points most towards the centre
+      const Eigen::Vector2d to_centre = s.interior.center() - p;
+      double yaw = 0, best = -1e9;
+      for (int k = 0; k < 4; ++k) {
+        const double y = k * kPi / 2;
+        const double along = Eigen::Vector2d(std::sin(y), -std::cos(y)).dot(to_centre);
+        if (along > best) best = along, yaw = y;
+      }
+      if (atModel(s, "person", m, p, yaw) >= 0) return;
+    }
   }
 
   void chairAround(RoomState& s, int table, int k) {

@@ -262,22 +262,7 @@ double albedoLuminance(const Material& m, std::map<std::string, double>& means) 
     if (it == means.end()) {
       double mean = 0.5;
       try {
-        const std::string ext = fs::path(m.albedo_texture.path).extension().string();
-        const ImageU8 img = ext == ".jpg" || ext == ".jpeg" || ext == ".JPG"
-                                ? readJpeg8(m.albedo_texture.path)
-                                : readPng8(m.albedo_texture.path);
-        const int c = std::min(img.channels, 3);
-        double sum = 0.0;
-        size_t n = 0;
-        for (int y = 0; y < img.height; ++y)
-          for (int x = 0; x < img.width; ++x) {
-            Eigen::Vector3f rgb;
-            for (int k = 0; k < 3; ++k)
-              rgb[k] = static_cast<float>(srgbEotf(img.at(x, y, std::min(k, c - 1)) / 255.0));
-            sum += luminance(rgb);
-            ++n;
-          }
-        if (n > 0) mean = sum / static_cast<double>(n);
+        mean = luminance(meanLinearRgb(m.albedo_texture.path));
       } catch (const std::exception&) {
       }
       it = means.emplace(m.albedo_texture.path, mean).first;

@@ -16,6 +16,8 @@
 #include "apartment_checks.h"
 #include "assets/catalog_library.h"
 #include "core/atomic_file.h"
+#include "core/color.h"
+#include "core/image_io.h"
 #include "procedural/apartment.h"
 #include "render/renderer.h"
 #include "scene/layout_json.h"
@@ -28,8 +30,10 @@ namespace fs = std::filesystem;
 using test::TempDir;
 
 Apartment buildCatalog(uint64_t seed, const fs::path& dir, const fs::path& textures = {},
-                       FurnitureSource source = FurnitureSource::Catalog) {
+                       FurnitureSource source = FurnitureSource::Catalog,
+                       DecorStyle style = DecorStyle::Any) {
   ApartmentOptions opt;
+  opt.style = style;
   opt.seed = seed;
   opt.texture_size = 64;
   opt.furniture = source;
@@ -120,6 +124,7 @@ void acceptance(int n) {
   std::set<std::string> distinct;
   size_t pieces = 0, catalog_pieces = 0;
   OpeningCounts openings;
+  size_t people = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (uint64_t seed = 0; seed < uint64_t(n); ++seed) {
     SCOPED_TRACE(seed);
@@ -132,6 +137,11 @@ void acceptance(int n) {
                                                   "skirting", "door",  "window",  "curtain"};
       if (shell.count(p.category)) continue;
       ++pieces;
+      if (p.category == "person") {
+        ++people;
+        EXPECT_FALSE(p.catalog_piece.empty()) << p.name;
+        EXPECT_EQ(p.rests_on, "floor") << p.name;
+      }
       if (!p.catalog_piece.empty()) ++catalog_pieces, distinct.insert(p.catalog_piece);
     }
   }
@@ -142,14 +152,16 @@ void acceptance(int n) {
       "from the catalogs (doors, windows, curtains not counted), %.1f layouts/s with "
       "the checks\n",
       n, distinct.size(), catalog_pieces, pieces, 100 * share, n / s);
-  std::printf("%zu windows, %zu catalog models (%zu arched), %zu catalog front doors of %d\n",
-              openings.windows, openings.catalog_windows, openings.shaped_windows,
-              openings.catalog_doors, n);
+  std::printf(
+      "%zu windows, %zu catalog models (%zu arched), %zu catalog front doors of %d; %zu people\n",
+      openings.windows, openings.catalog_windows, openings.shaped_windows, openings.catalog_doors,
+      n, people);
   EXPECT_GE(share, 0.6);
   // every window and front door with a fitting model is a catalog one; some are arched
   EXPECT_GE(openings.catalog_windows, openings.windows * 8 / 10);
   EXPECT_GE(openings.catalog_doors, size_t(n) * 8 / 10);
   if (n >= 20) EXPECT_GT(openings.shaped_windows, 0u);
+  if (n >= 20) EXPECT_GT(people, 0u) << "some rooms have people";
   if (n >= 1000) {
     EXPECT_GE(distinct.size(), 300u);
   }
@@ -231,6 +243,49 @@ TEST(CatalogApartment, CatalogPiecesKeepTheirClassesAndLampsShine) {
                       static_cast<PassMask>(Pass::Label), f);
   std::set<int> classes(f.label.data.begin(), f.label.data.end());
   EXPECT_GE(classes.size(), 5u);
+}
+
+TEST(CatalogApartment, StylesChooseDifferentCatalogModels) {
+  SKIP_WITHOUT_CATALOGS();
+  // the area-weighted luminance of the catalog models' surfaces (albedo times the texture's
+  // mean), over the same 8 plans furnished in a light and in a dark style
+  auto luminanceOf = [](DecorStyle style) {
+    TempDir dir;
+    double area_sum = 0, weighted = 0;
+    for (uint64_t seed = 0; seed < 8; ++seed) {
+      const Apartment apt =
+          buildCatalog(seed, dir.path() / std::to_string(seed), dir.path() / "textures",
+                       FurnitureSource::Catalog, style);
+      for (const Object& o : apt.scene.objects) {
+        const Mesh& mesh = apt.scene.meshes[size_t(o.mesh)];
+        if (mesh.source.kind != MeshSource::Kind::Catalog) continue;
+        const Material& m = apt.scene.materials[size_t(o.material)];
+        if (m.type == MaterialType::Dielectric || m.type == MaterialType::ThinDielectric) continue;
+        Eigen::Vector3d albedo = m.albedo.cast<double>();
+        if (!m.albedo_texture.empty())
+          albedo = albedo.cwiseProduct(meanLinearRgb(m.albedo_texture.path));
+        double area = 0;
+        for (const Tri& t : mesh.triangles) {
+          Vec3 p[3];
+          for (int k = 0; k < 3; ++k)
+            p[k] = (o.T_world_object * mesh.positions[t[k]].cast<double>().homogeneous()).head<3>();
+          area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+        }
+        area_sum += area;
+        weighted += area * luminance(albedo);
+      }
+    }
+    return weighted / area_sum;
+  };
+  const double light = luminanceOf(DecorStyle::Scandinavian);
+  const double dark = luminanceOf(DecorStyle::Classic);
+  const double any = luminanceOf(DecorStyle::Any);
+  std::printf("catalog surfaces' mean luminance: scandinavian %.3f, any %.3f, classic %.3f\n",
+              light, any, dark);
+  // (Scandinavian's target, 0.6 in styleWeight, is about where the catalogs already are)
+  EXPECT_GE(light, any - 0.01);
+  EXPECT_LT(dark, any - 0.05);
+  EXPECT_GT(light, dark + 0.05);
 }
 
 }  // namespace
