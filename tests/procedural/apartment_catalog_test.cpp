@@ -89,7 +89,9 @@ void checkOpenings(const Apartment& apt, OpeningCounts& n) {
     ++n.windows;
     const double mid = 0.5 * (w.from + w.to), zmid = 0.5 * (w.sill + w.top);
     EXPECT_FALSE(through(w.vertical, w.line, mid, zmid, kWall)) << "window opening closed";
-    if (w.sill > 0.1) EXPECT_TRUE(through(w.vertical, w.line, mid, w.sill - 0.05, kWall));
+    if (w.sill > 0.1) {
+      EXPECT_TRUE(through(w.vertical, w.line, mid, w.sill - 0.05, kWall)) << "below a window";
+    }
     EXPECT_TRUE(through(w.vertical, w.line, mid, w.top + 0.05, kWall)) << "above a window";
     const PlacedPiece* p = pieceAt("window", w.vertical, w.line, w.from, w.to);
     ASSERT_NE(p, nullptr) << "no window in the opening at " << mid;
@@ -160,8 +162,10 @@ void acceptance(int n) {
   // every window and front door with a fitting model is a catalog one; some are arched
   EXPECT_GE(openings.catalog_windows, openings.windows * 8 / 10);
   EXPECT_GE(openings.catalog_doors, size_t(n) * 8 / 10);
-  if (n >= 20) EXPECT_GT(openings.shaped_windows, 0u);
-  if (n >= 20) EXPECT_GT(people, 0u) << "some rooms have people";
+  if (n >= 20) {
+    EXPECT_GT(openings.shaped_windows, 0u);
+    EXPECT_GT(people, 0u) << "some rooms have people";
+  }
   if (n >= 1000) {
     EXPECT_GE(distinct.size(), 300u);
   }
