@@ -17,6 +17,7 @@ namespace {
 constexpr double kSimDt = 1e-3;     // simulation step (s)
 constexpr double kDrag = 1.0;       // k: velocity decays as exp(-k t) without forces (1/s)
 constexpr double kWarmup = 3.0;     // seconds simulated before the first frame
+constexpr double kMaxSettle = 20.0;  // more seconds at most, for a first view that is not a wall
 constexpr double kMargin = 0.005;   // extra clearance so interpolated samples keep the real one
 constexpr double kWallBand = 0.25;  // distance beyond the clearance where walls start to push
 constexpr double kMaxYawRate = 2.0;  // look-forward: yaw rate limit at w_mult 1 (rad/s)
@@ -179,17 +180,27 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   const double h_lo = floor_z + opt.min_height * scale, h_hi = floor_z + opt.max_height * scale;
   s.up = Vec3::UnitZ();
   const double look_dist = 1.5;
-  // first view: of 16 headings, the one with the longest free line of sight (up to 5 m, ties
-  // broken by a random rotation of the fan), so a trajectory does not open facing a wall
+  // How open the view along horizontal heading `a` is from `p`: the mean free line of sight
+  // (up to 5 m, as a share of it) over five directions across a 60-degree field of view. One
+  // central ray is not enough: through a doorway it may see 5 m while the view beside it is a
+  // wall half a metre away. An open scene's rays into the void past a missing wall count -0.1.
+  auto openness = [&](const Vec3& p, double a) {
+    double sum = 0.0;
+    for (const double off_deg : {-30.0, -15.0, 0.0, 15.0, 30.0}) {
+      const double b = a + off_deg * M_PI / 180.0;
+      const Vec3 dir(std::cos(b), std::sin(b), 0);
+      double r = 0.0;
+      while (r < 5.0 && space.lowerBound(p + (r + 0.1) * dir) > 0.0) r += 0.1;
+      sum += space.isOpen() && !space.seesGeometry(p, dir, 15.0) ? -0.1 : r / 5.0;
+    }
+    return sum / 5.0;
+  };
+  // first view: of 16 headings, the most open one (ties broken by a random rotation of the fan)
   const double fan = 2 * M_PI * rng.uniformDouble();
   double best_range = -1.0, best_heading = fan;
   for (int h = 0; h < 16; ++h) {
     const double a = fan + 2 * M_PI * h / 16;
-    const Vec3 dir(std::cos(a), std::sin(a), 0);
-    double range = 0.0;
-    while (range < 5.0 && space.lowerBound(s.cam + (range + 0.1) * dir) > 0.0) range += 0.1;
-    // an open scene: not into the void past a missing wall
-    if (space.isOpen() && !space.seesGeometry(s.cam, dir, 15.0)) range = -0.5;
+    const double range = openness(s.cam, a);
     if (range > best_range) best_range = range, best_heading = a;
   }
   s.target = s.cam + Vec3(look_dist * std::cos(best_heading), look_dist * std::sin(best_heading), -0.3);
@@ -375,6 +386,17 @@ RandomTrajectory generateRandomTrajectory(const FreeSpace& space,
   };
 
   for (int i = 0; i < static_cast<int>(kWarmup / kSimDt); ++i) step();
+  // and on, 0.1 s at a time for up to kMaxSettle, until the view is not a wall at arm's length
+  // (a mean free line of sight of 1.5 m or more, openness above): the warm-up forgets the open
+  // first view, and a sequence that opens on a blank wall is no good to look at nor to
+  // initialise a SLAM system on
+  // (not hand-held, whose view is down at the floor and tables by design)
+  const int settle = opt.type == MotionType::HandHeld ? 0 : static_cast<int>(kMaxSettle / 0.1);
+  for (int k = 0; k < settle; ++k) {
+    const Vec3 view = s.target - s.cam;
+    if (openness(s.cam, std::atan2(view.y(), view.x())) >= 0.3) break;
+    for (int i = 0; i < static_cast<int>(0.1 / kSimDt); ++i) step();
+  }
 
   // ---- record: sim states at every step over the span the samples need ----
   const TimeNs last_ns = static_cast<TimeNs>(std::llround((opt.frames - 1) * 1e9 / opt.fps)) +
