@@ -174,6 +174,9 @@ CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiec
   Scene raw;
   try {
     raw = importMeshScene(obj.string(), opt, &m.report);
+  } catch (const NoSurfaceError& e) {  // the same, keeping the type
+    throw NoSurfaceError(catalog.path, where_field,
+                         fmt::format("{}: {}", piece.model, e.problem()));
   } catch (const InputError& e) {
     throw InputError(catalog.path, where_field, fmt::format("{}: {}", piece.model, e.problem()));
   }

@@ -71,8 +71,8 @@ std::filesystem::path extractCatalogModel(const FurnitureCatalog& catalog,
 std::vector<Light> lampLights(const CatalogPiece& piece, const std::string& category);
 
 /// Loads `piece` of `catalog` (see the top of this file). `cache_dir` "" = catalogModelCache().
-/// Throws InputError naming the archive and "model#N" when the OBJ cannot be read or holds no
-/// triangles.
+/// Throws InputError naming the archive and "model#N" when the OBJ cannot be read, and
+/// NoSurfaceError (core/error.h) when it holds no triangles.
 CatalogModel loadCatalogModel(const FurnitureCatalog& catalog, const CatalogPiece& piece,
                               const std::filesystem::path& cache_dir = {});
 

@@ -583,11 +583,10 @@ class Builder {
       }
       try {
         place(p, loadCatalogModel(cat, cp), size_t(index - 1));
-      } catch (const InputError& e) {
+      } catch (const NoSurfaceError&) {
         // A light source without a body (Sweet Home 3D's "White light source" is drawn as
         // lines in the plan only) still lights; any other piece whose model has no surface
         // is left out and counted.
-        if (e.problem().find("no triangles") == std::string::npos) throw;
         if (p.kind == Sh3dPieceKind::Light && !p.light_sources.empty())
           bareLights(p, cp);
         else

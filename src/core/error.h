@@ -20,6 +20,13 @@ class InputError : public std::runtime_error {
   std::string file_, field_, problem_;
 };
 
+/// A model file that reads but holds no surface (only lines or points): an InputError a caller
+/// may tell apart by type (a Sweet Home 3D light source is drawn as lines and still lights).
+class NoSurfaceError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 [[noreturn]] void checkFailed(const char* expr, const char* file, int line, const std::string& msg);
 
 }  // namespace inet

@@ -40,6 +40,12 @@ bool known(const std::string& category) {
   return names.count(category) > 0;
 }
 
+std::string lowerCase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
 /// 2D box helpers (room coordinates: world x, y).
 using Box2 = Eigen::AlignedBox2d;
 bool overlaps(const Box2& a, const Box2& b, double margin = 0.0) {
@@ -929,6 +935,7 @@ class Builder {
     }
     std::vector<std::shared_ptr<const CatalogModel>> fits;
     for (const CatalogPiece* p : library.byCategory(category)) {
+      if (!domestic(*p)) continue;
       const Eigen::Vector3d sz = Eigen::Vector3d(p->width_cm, p->depth_cm, p->height_cm) / 100;
       if (library.label(p->id).slot) {  // any small thing that stands on a support
         if (sz.head<2>().maxCoeff() > 0.45 || sz.z() > 0.5 || sz.minCoeff() < 0.005) continue;
@@ -988,6 +995,18 @@ class Builder {
     const double w = area_sum > 0 ? weighted / area_sum : 1.0;
     std::lock_guard lock(mutex);
     return cache[{&c, style}] = w;
+  }
+
+  /// False for the catalog pieces that are labelled right but do not belong in a home (a
+  /// hospital bed is a bed, a urinal a toilet, a street lamp a floor lamp): the furnisher
+  /// passes over them. By name, in lower case.
+  static bool domestic(const CatalogPiece& p) {
+    static const char* const kNotAtHome[] = {"hospital", "street", "urinal", "outdoor",
+                                             "class seat", "locker", "abdominal"};
+    const std::string name = lowerCase(p.name);
+    for (const char* w : kNotAtHome)
+      if (name.find(w) != std::string::npos) return false;
+    return true;
   }
 
   /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
@@ -1466,9 +1485,7 @@ class Builder {
     for (const FurnitureCatalog& cat : library.catalogs())
       for (const CatalogPiece& p : cat.pieces) {
         if (!p.isInterior() || library.label(p.id).nyu40 != person) continue;
-        std::string name = p.name;
-        std::transform(name.begin(), name.end(), name.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        const std::string name = lowerCase(p.name);
         auto has = [&](const char* w) { return name.find(w) != std::string::npos; };
         if (has("mannequin") || has("lying")) continue;
         const bool kid = has("boy") || has("girl"), sitting = has("sitting");

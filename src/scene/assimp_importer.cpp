@@ -801,7 +801,7 @@ Scene importMeshScene(const std::string& path, const ImportOptions& opt, ImportR
   Scene& scene = builder.scene;
   scene.name = fs::path(path).stem().string();
   if (scene.objects.empty())
-    throw InputError(path, "", "the file contains no triangles (only lines or points?)");
+    throw NoSurfaceError(path, "", "the file contains no triangles (only lines or points?)");
   if (opt.split_shells) builder.report.split_shells = splitRoomShells(scene);
   const auto [lo, hi] = scene.bounds();
   builder.report.extent_m = (hi - lo).maxCoeff();
@@ -844,7 +844,7 @@ Mesh loadMeshFile(const std::string& path, double scale, char up, const std::str
   }
   Mesh mesh = builder.finish();
   if (mesh.triangles.empty())
-    throw InputError(where_file, where_field, what + "contains no triangles");
+    throw NoSurfaceError(where_file, where_field, what + "contains no triangles");
   mesh.id = mesh_name.empty() ? fs::path(path).stem().string() : mesh_name;
   mesh.source.kind = MeshSource::Kind::File;
   mesh.source.file = path;
