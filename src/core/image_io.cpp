@@ -23,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace fs = std::filesystem;
 
@@ -433,8 +434,7 @@ ImageF readExr(const fs::path& path, const std::vector<std::string>& channel_nam
 }
 
 Eigen::Vector3d meanLinearRgb(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(path.string());
   const ImageU8 img = ext == ".jpg" || ext == ".jpeg" ? readJpeg8(path) : readPng8(path);
   double table[256];
   for (int i = 0; i < 256; ++i) table[i] = srgbEotf(i / 255.0);

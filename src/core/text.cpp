@@ -27,10 +27,13 @@ std::string listNames(const std::vector<std::string>& names, size_t most) {
   return s;
 }
 
+std::string lowerCase(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
 std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
+  return lowerCase(std::filesystem::path(path).extension().string());
 }
 
 }  // namespace inet

@@ -12,6 +12,9 @@ std::vector<std::string> splitWhitespace(const std::string& line);
 /// counts without growing with the file.
 std::string listNames(const std::vector<std::string>& names, size_t most = 8);
 
+/// `s` with ASCII letters in lower case.
+std::string lowerCase(std::string s);
+
 /// The file name's extension in lower case, with its dot (".obj", ".glb"), "" if none.
 std::string lowerExtension(const std::string& path);
 

@@ -17,6 +17,7 @@
 #include "assets/svg_path.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/text.h"
 #include "procedural/furniture.h"
 #include "procedural/procedural_textures.h"
 #include "scene/nyu40.h"
@@ -38,12 +39,6 @@ bool known(const std::string& category) {
   static const std::set<std::string> names(furnitureCategories().begin(),
                                            furnitureCategories().end());
   return names.count(category) > 0;
-}
-
-std::string lowerCase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
 }
 
 /// 2D box helpers (room coordinates: world x, y).
@@ -695,16 +690,7 @@ class Builder {
     const Vec3 origin = on_line - Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Vec3(0, sy * y_wall, 0);
     Mat4 S = Mat4::Identity();
     S.diagonal().head<3>() = Vec3(width / c.size.x(), sy, height / c.size.z());
-    FurnitureModel m;
-    m.category = category;
-    m.catalog = o.model;
-    m.nyu40 = c.label.nyu40;
-    m.size = c.size;
-    m.hulls = c.hulls;
-    m.mass_kg = c.mass_kg;
-    m.friction = c.friction;
-    m.movable = false;
-    const int piece = add(m, placement(origin, yaw) * S, room, false);
+    const int piece = add(catalogOnly(category, o.model), placement(origin, yaw) * S, room, false);
     apt_.pieces[piece].rests_on = "wall";
   }
 
@@ -958,43 +944,45 @@ class Builder {
   /// How much decoration `style` likes catalog model `c`: styleWeight (furniture.h) of each of
   /// its materials, with the albedo times its texture's mean colour, averaged over the area of
   /// the surfaces made of it; glass is left out. A texture that cannot be read counts as mid
-  /// grey. Computed once per model and style.
+  /// grey. The materials and their areas are gathered once per model (the textures read once).
   static double catalogStyleWeight(const CatalogModel& c, DecorStyle style) {
     static std::mutex mutex;
-    static std::map<std::pair<const CatalogModel*, DecorStyle>, double> cache;
-    {
-      std::lock_guard lock(mutex);
-      auto it = cache.find({&c, style});
-      if (it != cache.end()) return it->second;
+    static std::map<const CatalogModel*, std::vector<std::pair<double, MaterialSpec>>> cache;
+    std::lock_guard lock(mutex);
+    auto it = cache.find(&c);
+    if (it == cache.end()) {
+      std::vector<std::pair<double, MaterialSpec>> surfaces;
+      for (const Object& o : c.parts.objects) {
+        const Material& mat = c.parts.materials[size_t(o.material)];
+        if (mat.type == MaterialType::Dielectric || mat.type == MaterialType::ThinDielectric)
+          continue;
+        const Mesh& mesh = c.parts.meshes[size_t(o.mesh)];
+        double area = 0;
+        for (const Tri& t : mesh.triangles)
+          area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
+                            .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+                            .norm();
+        MaterialSpec spec;
+        spec.type = mat.type;
+        spec.albedo = mat.albedo;
+        if (!mat.albedo_texture.empty()) {
+          Eigen::Vector3d mean = Eigen::Vector3d::Constant(0.5);
+          try {
+            mean = meanLinearRgb(mat.albedo_texture.path);
+          } catch (const InputError&) {
+          }
+          spec.albedo = spec.albedo.cwiseProduct(mean.cast<float>());
+        }
+        surfaces.emplace_back(area, spec);
+      }
+      it = cache.emplace(&c, std::move(surfaces)).first;
     }
     double area_sum = 0, weighted = 0;
-    for (const Object& o : c.parts.objects) {
-      const Material& mat = c.parts.materials[size_t(o.material)];
-      if (mat.type == MaterialType::Dielectric || mat.type == MaterialType::ThinDielectric)
-        continue;
-      const Mesh& mesh = c.parts.meshes[size_t(o.mesh)];
-      double area = 0;
-      for (const Tri& t : mesh.triangles)
-        area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]])
-                          .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
-                          .norm();
-      MaterialSpec spec;
-      spec.type = mat.type;
-      spec.albedo = mat.albedo;
-      if (!mat.albedo_texture.empty()) {
-        Eigen::Vector3d mean = Eigen::Vector3d::Constant(0.5);
-        try {
-          mean = meanLinearRgb(mat.albedo_texture.path);
-        } catch (const std::exception&) {
-        }
-        spec.albedo = spec.albedo.cwiseProduct(mean.cast<float>());
-      }
+    for (const auto& [area, spec] : it->second) {
       area_sum += area;
       weighted += area * styleWeight(style, spec);
     }
-    const double w = area_sum > 0 ? weighted / area_sum : 1.0;
-    std::lock_guard lock(mutex);
-    return cache[{&c, style}] = w;
+    return area_sum > 0 ? weighted / area_sum : 1.0;
   }
 
   /// False for the catalog pieces that are labelled right but do not belong in a home (a
@@ -1009,10 +997,9 @@ class Builder {
     return true;
   }
 
-  /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
-  static FurnitureModel fromCatalog(const FurnitureModel& parametric,
-                                    const std::shared_ptr<const CatalogModel>& c) {
-    FurnitureModel m = parametric;
+  /// Puts catalog model `c`'s geometry, label, size, hulls and physics in `m` (its parametric
+  /// parts, materials and light dropped).
+  static void takeCatalog(FurnitureModel& m, const std::shared_ptr<const CatalogModel>& c) {
     m.catalog = c;
     m.parts.clear();
     m.materials.clear();
@@ -1023,6 +1010,24 @@ class Builder {
     m.mass_kg = c->mass_kg;
     m.friction = c->friction;
     m.movable = c->movable;
+  }
+
+  /// Catalog model `c` as a piece of our `category` with no parametric stand-in (doors,
+  /// windows, people), which rearrangements leave where it is.
+  static FurnitureModel catalogOnly(const std::string& category,
+                                    const std::shared_ptr<const CatalogModel>& c) {
+    FurnitureModel m;
+    m.category = category;
+    takeCatalog(m, c);
+    m.movable = false;
+    return m;
+  }
+
+  /// `parametric` with the catalog model's geometry, size, hulls and physics in its place.
+  static FurnitureModel fromCatalog(const FurnitureModel& parametric,
+                                    const std::shared_ptr<const CatalogModel>& c) {
+    FurnitureModel m = parametric;
+    takeCatalog(m, c);
     if (m.placement == FurnitureModel::Placement::Wall && c->elevation_m > 0)
       m.mount_height = c->elevation_m;
     if (m.is_support) {  // the top, or where the catalog says things are dropped on it
@@ -1513,15 +1518,7 @@ class Builder {
     if (pool.empty()) return;
     const auto& c =
         pool[std::min(pool.size() - 1, static_cast<size_t>(r.uniform() * pool.size()))];
-    FurnitureModel m;
-    m.category = "person";
-    m.catalog = c;
-    m.nyu40 = c->label.nyu40;
-    m.size = c->size;
-    m.hulls = c->hulls;
-    m.mass_kg = c->mass_kg;
-    m.friction = c->friction;
-    m.movable = false;
+    const FurnitureModel m = catalogOnly("person", c);
     const Box2 area(s.interior.min() + Eigen::Vector2d::Constant(0.4),
                     s.interior.max() - Eigen::Vector2d::Constant(0.4));
     if (area.isEmpty()) return;
