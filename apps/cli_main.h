@@ -1,7 +1,7 @@
 #pragma once
 // What every `main` of the command line does around CLI11: one-line errors, the last value of a
 // repeated option, and the only place errors become exit codes (STYLE.md section 4): 2 for bad
-// input (InputError), 1 for anything else.
+// input (InputError), 128 + the signal after a stop signal (core/stop.h), 1 for anything else.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/stop.h"
 
 namespace inet::app {
 
@@ -28,6 +29,8 @@ inline int runCli(CLI::App& app, int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const StopRequested& e) {  // stopped at a safe point; the message is printed
+    return e.exitCode();
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -1,5 +1,5 @@
 // interiornet events: the event camera alone, along a camera trajectory file through a scene;
-// the same events0/ folder `generate --passes events` writes (apps/sensor_outputs.h).
+// the same events0/ folder `generate --passes events` writes (pipeline/sensor_outputs.h).
 #include <cmath>
 #include <memory>
 
@@ -8,7 +8,7 @@
 #include "common.h"
 #include "core/error.h"
 #include "render/renderer.h"
-#include "sensor_outputs.h"
+#include "pipeline/sensor_outputs.h"
 #include "dataset/sequence_writer.h"
 #include "trajectory/formats.h"
 
@@ -16,9 +16,9 @@ namespace inet::app {
 namespace {
 
 struct EventsCliArgs {
-  SceneArgs scene;
+  SceneSource scene;
   std::string trajectory, out;
-  EventArgs events;
+  EventSettings events;
   double hfov_deg = 90.0;
   double knot_spacing_s = 0.0;
   uint64_t seed = 0;
@@ -59,11 +59,11 @@ void registerEvents(CLI::App& app) {
       "adaptive rate along the trajectory's B-spline; writes OUT/events0/{events.txt (t x y p), "
       "events.h5 (DSEC), frames/, sensor.yaml}. A finished folder is not redone");
   auto a = std::make_shared<EventsCliArgs>();
-  a->scene.addTo(*cmd);
+  addSceneFlags(*cmd, a->scene);
   cmd->add_option("--trajectory", a->trajectory,
                   "camera trajectory file (tum, euroc, icl, ...; T_world_camera, OpenCV axes)")
       ->required();
-  a->events.addTo(*cmd);
+  addEventFlags(*cmd, a->events);
   cmd->add_option("--hfov", a->hfov_deg, "horizontal field of view in degrees (default 90)");
   cmd->add_option("--knot-spacing", a->knot_spacing_s,
                   "spline knot spacing in s; default 0 = the input's mean spacing but at least "

@@ -107,7 +107,7 @@ void importScene(Scene s, const std::string& out) {
 
 /// A Mitsuba scene to `out`, and its sensor to camera.json in the same folder, so that
 /// `interiornet render --layout OUT --camera camera.json` renders the scene's own view.
-void importMitsuba(const SceneArgs& args, const std::string& out) {
+void importMitsuba(const SceneSource& args, const std::string& out) {
   namespace fs = std::filesystem;
   if (!(args.scale > 0)) throw InputError(args.path, "--scale", "must be > 0");
   const MitsubaOptions opt = args.mitsubaOptions();
@@ -127,7 +127,7 @@ void importMitsuba(const SceneArgs& args, const std::string& out) {
 
 /// A Sweet Home 3D home to `out`, and its views (video path, else stored points of view, else
 /// the observer) to cameras.tum beside it: one pose a second, for generate --trajectory.
-void importHome(const SceneArgs& args, const std::string& out) {
+void importHome(const SceneSource& args, const std::string& out) {
   namespace fs = std::filesystem;
   const Sh3dHome home = readSh3dHome(args.path);
   Sh3dImportReport report;
@@ -271,7 +271,7 @@ ImageF bakeSky(const Scene& s, int width) {
 }
 
 struct ExportArgs {
-  SceneArgs scene;
+  SceneSource scene;
   std::string out, format, camera;
   int sky_width = 1024;
 };
@@ -326,8 +326,8 @@ void registerLayout(CLI::App& app) {
   layout->require_subcommand(1);
   auto* show = layout->add_subcommand(
       "show", "Print a summary of a layout.json or mesh scene: objects, classes, bounds");
-  auto args = std::make_shared<SceneArgs>();
-  args->addTo(*show);
+  auto args = std::make_shared<SceneSource>();
+  addSceneFlags(*show, *args);
   show->callback([args] { showScene(args->load()); });
 
   auto* gen = layout->add_subcommand(
@@ -380,7 +380,7 @@ void registerLayout(CLI::App& app) {
   exp->add_option("FILE", exp_args->scene.path,
                   "the scene to export (the same as --layout): layout.json or any mesh file; "
                   "default: the built-in furnished room");
-  exp_args->scene.addTo(*exp);
+  addSceneFlags(*exp, exp_args->scene);
   exp->add_option("--out", exp_args->out, "the .gltf or .glb file to write (atomically)")
       ->required();
   exp->add_option("--format", exp_args->format, "gltf or glb (default: from --out's extension)")
@@ -400,12 +400,12 @@ void registerLayout(CLI::App& app) {
       "Home 3D home (.sh3d: walls, rooms, doors and windows cut, furniture, lights, daylight "
       "from its compass; its stored views are written as cameras.tum beside the layout), ready "
       "for lights and motion");
-  auto import_args = std::make_shared<SceneArgs>();
+  auto import_args = std::make_shared<SceneSource>();
   import->add_option("FILE", import_args->path,
                      "the scene to import (the same as --scene): .json 3D-FRONT house, .xml "
                      "Mitsuba scene, .sh3d Sweet Home 3D home, or any mesh file Assimp reads "
                      "(.obj .gltf .glb .ply .fbx ...)");
-  import_args->addTo(*import);
+  addSceneFlags(*import, *import_args);
   auto out = std::make_shared<std::string>();
   auto from = std::make_shared<std::string>();
   auto models = std::make_shared<std::string>();

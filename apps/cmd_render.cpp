@@ -18,18 +18,18 @@ namespace inet::app {
 namespace {
 
 struct RenderArgs {
-  SceneArgs scene;
+  SceneSource scene;
   std::string camera;
   int spp = 16;
   int max_bounces = 8;
   uint64_t seed = 0;
   int threads = 0;
   std::string pass = "rgb";
-  LensArgs lens;
+  LensSettings lens;
   bool denoise = false;
   bool light_cache = false;
   bool sun_photons = false;
-  ResponseArgs response;
+  ResponseSettings response;
   std::string camera_end;
   double exposure_ms = 0.0;
   double time_s = 0.0;
@@ -131,7 +131,7 @@ void runRender(const RenderArgs& a) {
 void registerRender(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render one image of a scene from a camera.json");
   auto a = std::make_shared<RenderArgs>();
-  a->scene.addTo(*cmd);
+  addSceneFlags(*cmd, a->scene);
   cmd->add_option("--camera", a->camera,
                   "camera.json (width, height, fx, fy, cx, cy with pixel centres at +0.5, and "
                   "position/look_at/up or cam_to_world); default: the built-in room's first pose");
@@ -142,8 +142,8 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_option("--pass,--passes", a->pass,
                   "which image: rgb, albedo, normal, depth, ray_depth (default rgb)");
-  a->lens.addTo(*cmd);
-  a->response.addTo(*cmd);
+  addLensFlags(*cmd, a->lens);
+  addResponseFlags(*cmd, a->response);
   cmd->add_flag("--denoise", a->denoise,
                 "edge-aware a-trous denoising of the RGB image guided by albedo, normals and depth "
                 "(docs/denoise.md); trades a little bias for much less noise; off by default");

@@ -22,8 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct TrajectoryGenerateArgs {
-  SceneArgs scene;
-  MotionArgs motion;
+  SceneSource scene;
+  MotionSettings motion;
   std::string type = "two-body";
   int frames = 250;
   double fps = 25.0;
@@ -36,7 +36,7 @@ struct TrajectoryGenerateArgs {
 };
 
 /// The layout's scene for a trajectory: the given layout, or the built-in apartment.
-Scene trajectoryScene(const SceneArgs& args) {
+Scene trajectoryScene(const SceneSource& args) {
   return args.isDefault() ? defaultApartment() : args.loadScene();
 }
 
@@ -163,8 +163,8 @@ void registerTrajectory(CLI::App& app) {
       "gravity, never closer than --clearance to any geometry. World Z up, floor at z = 0, "
       "camera axes as OpenCV");
   auto a = std::make_shared<TrajectoryGenerateArgs>();
-  a->scene.addTo(*gen);
-  a->motion.addTo(*gen);
+  addSceneFlags(*gen, a->scene);
+  addMotionFlags(*gen, a->motion);
   gen->add_option("--type", a->type, "two-body, hand-held or look-forward (default two-body)");
   gen->add_option("--frames", a->frames, "number of poses (default 250)");
   gen->add_option("--fps", a->fps, "pose rate (default 25)");
@@ -195,10 +195,10 @@ void registerTrajectory(CLI::App& app) {
   auto* show = trajectory->add_subcommand(
       "show", "Draw a trajectory file (top-down over the layout, height and speed) as a PNG");
   auto s = std::make_shared<std::pair<std::string, std::string>>();
-  auto scene = std::make_shared<SceneArgs>();
+  auto scene = std::make_shared<SceneSource>();
   show->add_option("TRAJECTORY", s->first, "trajectory file (tum, euroc, icl, slambench, scenenet, scenenet_v1, kitti)")
       ->required();
-  scene->addTo(*show, "no scene drawn, only the path");
+  addSceneFlags(*show, *scene, "no scene drawn, only the path");
   show->add_option("--out", s->second, "PNG to write")->required();
   show->callback([s, scene] {
     Trajectory traj = readTrajectoryFile(s->first);

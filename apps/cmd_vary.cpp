@@ -20,7 +20,7 @@ namespace inet::app {
 namespace {
 
 struct VaryLightingArgs {
-  SceneArgs scene;
+  SceneSource scene;
   std::string mode = "random";
   std::string out;
   RandomLightingOptions random;
@@ -91,7 +91,7 @@ void runVaryLighting(VaryLightingArgs a) {
 }
 
 struct VaryRearrangeArgs {
-  SceneArgs scene;
+  SceneSource scene;
   RearrangeOptions opt;
   std::string out;
 };
@@ -155,7 +155,7 @@ void registerVary(CLI::App& app) {
       "range), time-of-day (sun and daylight sky placed by date, time and latitude; lamps on "
       "after dusk) or manual (only --on/--off)");
   auto a = std::make_shared<VaryLightingArgs>();
-  a->scene.addTo(*cmd);
+  addSceneFlags(*cmd, a->scene);
   cmd->add_option("--mode", a->mode, "random, time-of-day or manual (default random)");
   cmd->add_option("--seed", a->random.seed, "random mode: seed (default 0)");
   cmd->add_option("--on-probability", a->random.on_probability,
@@ -187,7 +187,7 @@ void registerVary(CLI::App& app) {
       "(10 s at most; what rests on a pushed piece rides along or falls); writes OUT/layout.json, "
       "OUT/light.xml (lamps' lights moved with them) and OUT/rearrange_log.json");
   auto r = std::make_shared<VaryRearrangeArgs>();
-  r->scene.addTo(*re);
+  addSceneFlags(*re, r->scene);
   re->add_option("--seed", r->opt.seed, "seed (default 0)");
   re->add_option("--min-share", r->opt.min_share, "share of movable objects pushed, from (0.05)");
   re->add_option("--max-share", r->opt.max_share, "... to (0.45)");

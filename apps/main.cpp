@@ -31,5 +31,6 @@ int main(int argc, char** argv) {
   inet::app::registerVary(app);
   inet::app::registerDenoiser(app);
   inet::app::registerAssets(app);
+  inet::app::registerDataset(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -16,6 +16,7 @@ PACKAGES=(
   libbullet-dev
   libtinygltf-dev
   libzip-dev sweethome3d-furniture libgeos-dev
+  libsqlite3-dev libopenmpi-dev openmpi-bin
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -385,6 +385,8 @@ H5Handle createVector(hid_t loc, const char* name, hid_t type, hsize_t n, bool e
   const hsize_t chunk =
       std::max<hsize_t>(1, extendible ? o.chunk_events : std::min<hsize_t>(n, o.chunk_events));
   need(H5Pset_chunk(dcpl.get(), 1, &chunk), file, name, "H5Pset_chunk");
+  // no creation and modification times in the object header: same events, same bytes
+  need(H5Pset_obj_track_times(dcpl.get(), false), file, name, "H5Pset_obj_track_times");
   if (o.shuffle) need(H5Pset_shuffle(dcpl.get()), file, name, "H5Pset_shuffle");
   if (o.deflate_level > 0)
     need(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(o.deflate_level)), file, name,
@@ -471,12 +473,21 @@ EventH5Writer::EventH5Writer(const fs::path& path, int64_t t0_ns, int width, int
   createParent(path);
   H5Quiet quiet;
   try {
-    m.file = H5Handle(need(H5Fcreate(m.tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                           m.name, "", "H5Fcreate"),
+    // HDF5 stamps every object with its creation and modification times unless told not to;
+    // the file must be the same bytes whenever it is made (same seed, same bytes)
+    H5Handle fcpl(need(H5Pcreate(H5P_FILE_CREATE), m.name, "", "H5Pcreate"), H5Pclose);
+    need(H5Pset_obj_track_times(fcpl.get(), false), m.name, "/", "H5Pset_obj_track_times");
+    H5Handle gcpl(need(H5Pcreate(H5P_GROUP_CREATE), m.name, "", "H5Pcreate"), H5Pclose);
+    need(H5Pset_obj_track_times(gcpl.get(), false), m.name, "/events", "H5Pset_obj_track_times");
+    H5Handle scalar_dcpl(need(H5Pcreate(H5P_DATASET_CREATE), m.name, "", "H5Pcreate"), H5Pclose);
+    need(H5Pset_obj_track_times(scalar_dcpl.get(), false), m.name, "/t_offset",
+         "H5Pset_obj_track_times");
+    m.file = H5Handle(need(H5Fcreate(m.tmp.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT), m.name,
+                           "", "H5Fcreate"),
                       H5Fclose);
     m.open = true;
     m.group =
-        H5Handle(need(H5Gcreate2(m.file.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Handle(need(H5Gcreate2(m.file.get(), "events", H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
                       m.name, "/events", "H5Gcreate2"),
                  H5Gclose);
     m.t = createVector(m.group.get(), "t", H5T_STD_U64LE, 0, true, opts, m.name);
@@ -489,7 +500,7 @@ EventH5Writer::EventH5Writer(const fs::path& path, int64_t t0_ns, int width, int
     }
     H5Handle space(need(H5Screate(H5S_SCALAR), m.name, "/t_offset", "H5Screate"), H5Sclose);
     H5Handle off(need(H5Dcreate2(m.file.get(), "t_offset", H5T_STD_I64LE, space.get(), H5P_DEFAULT,
-                                 H5P_DEFAULT, H5P_DEFAULT),
+                                 scalar_dcpl.get(), H5P_DEFAULT),
                       m.name, "/t_offset", "H5Dcreate2"),
                  H5Dclose);
     need(H5Dwrite(off.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &m.t0_us), m.name,

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <future>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -722,6 +724,76 @@ TEST(Generate, AFilePathOutsideTheSceneIsWarnedAbout) {
   EXPECT_EQ(no_file.exit_code, 2);
   EXPECT_NE(no_file.err.find("--place-trajectory: needs a camera path file"), std::string::npos)
       << no_file.err;
+}
+
+}  // namespace
+}  // namespace inet::test
+
+namespace inet::test {
+namespace {
+
+// Issue 16: a sequence made as frame ranges (pipeline/sequence_job.h) is the sequence made at
+// once, whatever the order of the ranges or if they run together: the same bytes in every file,
+// imu0/, boxes.json and events0/ included, and the sequence-level files come only from the run
+// that finds every frame done.
+TEST(Generate, FrameRangesInAnyOrderOrAtOnceGiveTheWholeSequence) {
+  TempDir dir("gen_ranges");
+  const std::string args = kSmall + "--frames 6 --spp 2 --temporal 3 --seed 5 " +
+                           "--passes default,events --event-width 40 --event-height 30 " +
+                           "--event-spp 1 --out ";
+  const RunResult whole = runInterinet(args + (dir / "whole").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto full = readTree(dir / "whole");
+  ASSERT_TRUE(full.count("default_room/seq_000/boxes.json"));
+  ASSERT_TRUE(full.count("default_room/seq_000/events0/sensor.yaml"));
+
+  // the last range first: frames only, no index, no boxes, no events yet
+  const RunResult late = runInterinet(args + (dir / "ranges").string() + " --frame-range 3:6");
+  ASSERT_EQ(late.exit_code, 0) << late.err;
+  EXPECT_NE(late.out.find("wrote frames 3..5 of 6"), std::string::npos) << late.out;
+  const fs::path seq = seqDir(dir / "ranges");
+  EXPECT_FALSE(fs::exists(seq / "boxes.json"));
+  EXPECT_FALSE(fs::exists(seq / "events0" / "sensor.yaml"));
+  EXPECT_FALSE(fs::exists(seq / "cam0" / "data.csv"));
+  EXPECT_EQ(countFiles(seq / "cam0" / "data"), 3u);
+  // then the first: it completes the sequence and writes the rest
+  const RunResult early = runInterinet(args + (dir / "ranges").string() + " --frame-range 0:3");
+  ASSERT_EQ(early.exit_code, 0) << early.err;
+  EXPECT_NE(early.out.find("wrote 6 frames"), std::string::npos) << early.out;
+  const auto ranged = readTree(dir / "ranges");
+  ASSERT_EQ(ranged.size(), full.size());
+  for (const auto& [name, bytes] : full)
+    EXPECT_TRUE(ranged.count(name) && ranged.at(name) == bytes) << name << " differs";
+
+  // two ranges at once into one folder (as two ranks would): whoever ends last finishes it; a
+  // rerun of either then finds everything done and writes the same bytes
+  const std::string together = args + (dir / "together").string();
+  auto first = std::async(std::launch::async,
+                          [&] { return runInterinet(together + " --frame-range 0:2"); });
+  const RunResult second = runInterinet(together + " --frame-range 2:9");
+  ASSERT_EQ(first.get().exit_code, 0);
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  const RunResult again = runInterinet(together + " --frame-range 0:2");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("resuming: 2 of frames 0..1 already complete"), std::string::npos)
+      << again.err;
+  const auto both = readTree(dir / "together");
+  ASSERT_EQ(both.size(), full.size());
+  for (const auto& [name, bytes] : full)
+    EXPECT_TRUE(both.count(name) && both.at(name) == bytes) << name << " differs";
+
+  // ranges that are not ranges
+  for (const char* bad : {"3", "4:2", "a:3", "2:2"}) {
+    const RunResult r = runInterinet(args + (dir / "bad").string() + " --frame-range " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--frame-range"), std::string::npos) << r.err;
+  }
+  const RunResult past = runInterinet(args + (dir / "bad").string() + " --frame-range 6:8");
+  EXPECT_EQ(past.exit_code, 2);
+  EXPECT_NE(past.err.find("starts at frame 6 but the camera path has 6 frames"),
+            std::string::npos)
+      << past.err;
+  EXPECT_FALSE(fs::exists(dir / "bad")) << "nothing written";
 }
 
 }  // namespace

@@ -1,9 +1,7 @@
 #pragma once
-// The sensor stage as `generate` and `events` run it: which sensors a --passes list selects,
-// the per-frame derived passes (Kinect-like depth, optical flow) and the sequence-level outputs
-// (events0/, boxes.json).
-#include <CLI/CLI.hpp>
-
+// The sensor stage of a sequence (pipeline/sequence_job.h) and of `interiornet events`: which
+// sensors a --passes list selects, the per-frame derived passes (Kinect-like depth, optical
+// flow) and the sequence-level outputs (events0/, boxes.json).
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -19,10 +17,8 @@
 #include "trajectory/trajectory.h"
 
 namespace inet {
-class Renderer;
-}
 
-namespace inet::app {
+class Renderer;
 
 /// What a --passes list asks for: frame passes (render/frame.h) and whole-sequence sensors.
 struct SequencePasses {
@@ -42,14 +38,13 @@ struct SequencePasses {
 /// pinhole or thin lens.
 SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool rolling_shutter);
 
-/// Options of the event camera on the command line (--event-*), added to `cmd`.
-struct EventArgs {
+/// Options of the event camera as the command line gives them (--event-*, --contrast, ...).
+struct EventSettings {
   EventCameraOptions opt;
   double refractory_ms = 0.0;
   double contrast = 0.2;
-  double contrast_pos = std::numeric_limits<double>::quiet_NaN();  ///< NaN: --contrast
+  double contrast_pos = std::numeric_limits<double>::quiet_NaN();  ///< NaN: contrast
   double contrast_neg = std::numeric_limits<double>::quiet_NaN();
-  void addTo(CLI::App& cmd);
   /// The options (InputError naming the flag), with `seed` for the renderer and the simulator.
   EventCameraOptions options(uint64_t seed) const;
 };
@@ -84,4 +79,4 @@ bool writeEventsFolder(const std::filesystem::path& dir, const Renderer& rendere
                        TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
                        bool progress);
 
-}  // namespace inet::app
+}  // namespace inet

@@ -1,6 +1,4 @@
-#include "sensor_outputs.h"
-
-#include "common.h"
+#include "pipeline/sensor_outputs.h"
 
 #include <cmath>
 #include <sstream>
@@ -11,12 +9,13 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/progress.h"
+#include "core/stop.h"
 #include "dataset/asl_writer.h"
 #include "render/renderer.h"
 #include "sensors/event_io.h"
 #include "sensors/optical_flow.h"
 
-namespace inet::app {
+namespace inet {
 namespace {
 
 namespace fs = std::filesystem;
@@ -87,29 +86,7 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
   return out;
 }
 
-void EventArgs::addTo(CLI::App& cmd) {
-  cmd.add_option("--event-width", opt.width, "event camera width in pixels (default 240, DAVIS240)");
-  cmd.add_option("--event-height", opt.height, "event camera height in pixels (default 180)");
-  cmd.add_option("--event-spp", opt.spp,
-                 "path-traced samples per pixel of each event-camera sample (default 16)");
-  cmd.add_option("--contrast", contrast,
-                 "ON and OFF contrast thresholds in log intensity (default 0.2, as v2e)");
-  cmd.add_option("--contrast-pos", contrast_pos, "ON threshold alone (default: --contrast)");
-  cmd.add_option("--contrast-neg", contrast_neg, "OFF threshold alone (default: --contrast)");
-  cmd.add_option("--threshold-spread", opt.sim.threshold_spread,
-                 "std of each pixel's fixed threshold around the nominal one (v2e's mismatch, "
-                 "0.03 there; default 0)");
-  cmd.add_option("--leak-rate-hz", opt.sim.leak_rate_hz,
-                 "leak events per pixel and second (v2e 0.01-0.2; default 0)");
-  cmd.add_option("--contrast-sigma", opt.sim.sigma_c,
-                 "threshold noise per pixel and interval, std (default 0.021, ESIM)");
-  cmd.add_option("--refractory-ms", refractory_ms,
-                 "refractory period per pixel in ms (default 0, ESIM; v2e uses 0.5)");
-  cmd.add_option("--shot-noise-rate-hz", opt.sim.shot_noise_rate_hz,
-                 "shot-noise events per pixel and second (default 0 = none; v2e 0.001)");
-}
-
-EventCameraOptions EventArgs::options(uint64_t seed) const {
+EventCameraOptions EventSettings::options(uint64_t seed) const {
   EventCameraOptions o = opt;
   // --contrast sets both thresholds; the simulator checks them under its own names, which are
   // the flags --contrast-pos and --contrast-neg (as all its fields are flags here)
@@ -162,10 +139,10 @@ FlowField flowTowards(const Renderer& renderer, const Scene& scene, const LensMo
                                            other.scene_time_ns * 1e-9, scene.name),
                        fo);
   // backwardFlow takes the previous -> this motion table
-  return backwardFlow(there_view, here_view, lens,
-                      objectMotionBetween(scene, other.scene_time_ns * 1e-9,
-                                          self.scene_time_ns * 1e-9, scene.name),
-                      fo);
+  return backwardFlow(
+      there_view, here_view, lens,
+      objectMotionBetween(scene, other.scene_time_ns * 1e-9, self.scene_time_ns * 1e-9, scene.name),
+      fo);
 }
 
 }  // namespace
@@ -175,8 +152,8 @@ void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensM
                        uint32_t noise_frame, const NeighbourFrame& self,
                        const NeighbourFrame* previous, const NeighbourFrame* next, Frame& frame) {
   if (has(passes, Pass::DepthNoisy)) {
-    frame.depth_noisy = kinectNoisyDepth(frame.depth_z, frame.normal, lens.K, noise, seed,
-                                         noise_frame);
+    frame.depth_noisy =
+        kinectNoisyDepth(frame.depth_z, frame.normal, lens.K, noise, seed, noise_frame);
     frame.passes |= bit(Pass::DepthNoisy);
   }
   if (has(passes, Pass::Flow) && next != nullptr) {
@@ -262,9 +239,10 @@ bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scen
       formatFloat(K.fy), formatFloat(K.cx - 0.5), formatFloat(K.cy - 0.5),
       formatFloat(opt.sim.c_pos), formatFloat(opt.sim.c_neg), formatFloat(opt.sim.sigma_c),
       formatFloat(opt.sim.threshold_spread), opt.sim.refractory_ns, formatFloat(opt.sim.log_eps),
-      formatFloat(opt.sim.leak_rate_hz), formatFloat(opt.sim.shot_noise_rate_hz), stats.samples, stats.events);
+      formatFloat(opt.sim.leak_rate_hz), formatFloat(opt.sim.shot_noise_rate_hz), stats.samples,
+      stats.events);
   writeTextAtomic(out / "sensor.yaml", yaml);
   return true;
 }
 
-}  // namespace inet::app
+}  // namespace inet

@@ -1,0 +1,214 @@
+#include "builder/dataset_build.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "builder/unit_runner.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stop.h"
+
+namespace inet {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double nowSeconds() {
+  using namespace std::chrono;
+  return duration<double>(system_clock::now().time_since_epoch()).count();
+}
+
+double steadySeconds() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+BuildFolder::BuildFolder(const fs::path& root) : root_(root) {
+  const fs::path plan_file = root / "plan.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(plan_file, ec))
+    throw InputError(root.string(), "plan.json",
+                     "not a build folder: no plan.json (make one with `interiornet dataset plan "
+                     "SPEC --out " + root.string() + "`)");
+  plan_ = readPlan(plan_file);
+  units_ = inet::units(plan_);
+  state_ = std::make_unique<BuildState>(root / "state.sqlite");
+  std::vector<std::pair<std::string, int64_t>> rows;
+  rows.reserve(units_.size());
+  for (const WorkUnit& u : units_) rows.emplace_back(u.id, u.frames);
+  state_->sync(rows, specChecksum(readTextFile(plan_file)));
+}
+
+BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
+  BuildState& state = folder.state();
+  BuildReport report;
+  const double t0 = steadySeconds();
+  const int64_t again = state.resetRunning();
+  const int64_t retried = state.retryFailed(opt.max_attempts);
+  if (again > 0)
+    std::fprintf(stderr, "resuming: %lld unit(s) a stopped build left running run again\n",
+                 static_cast<long long>(again));
+  if (retried > 0)
+    std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+  StateCounts c = state.counts();
+  const int64_t total_frames = c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3];
+  int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
+  ProgressBar bar(total_frames, "frames", opt.progress);
+  bar.update(frames_done);
+  while (opt.max_units == 0 || report.units_run < opt.max_units) {
+    stopIfSignalled("between work units of " + folder.root().string());
+    const std::optional<UnitRecord> r = state.claim(0, nowSeconds());
+    if (!r) break;
+    const WorkUnit& unit = folder.unit(r->order);
+    const double u0 = steadySeconds();
+    ++report.units_run;
+    try {
+      const UnitOutput out = runUnit(folder.plan(), unit, folder.root());
+      const double seconds = steadySeconds() - u0;
+      state.markDone(unit.id, seconds, out.checksums);
+      report.unit_s += seconds;
+      ++report.units_done;
+      report.frames += unit.frames;
+      frames_done += unit.frames;
+      bar.update(frames_done);
+    } catch (const StopRequested&) {
+      report.unit_s += steadySeconds() - u0;
+      state.resetRunning();  // the unit in flight is not done: the rerun does it
+      bar.finish();
+      throw;
+    } catch (const std::exception& e) {
+      report.unit_s += steadySeconds() - u0;
+      state.markFailed(unit.id, e.what(), opt.max_attempts);
+      const auto after = state.unit(unit.id);
+      std::fprintf(stderr, "unit %s failed (attempt %d of %d): %s\n", unit.id.c_str(),
+                   after ? after->attempts : 0, opt.max_attempts, e.what());
+      if (after && after->state == UnitState::Failed) ++report.units_failed;
+    }
+  }
+  bar.finish();
+  c = state.counts();
+  report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
+  report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
+  report.wall_s = steadySeconds() - t0;
+  return report;
+}
+
+namespace {
+
+struct StatusData {
+  StateCounts counts;
+  std::vector<BuildState::RankStats> ranks;
+  double rate = 0.0;  ///< frames/s, summed over ranks
+  double eta_s = 0.0;
+  std::vector<UnitRecord> running, errors;
+};
+
+StatusData statusData(const BuildFolder& folder) {
+  StatusData d;
+  const BuildState& st = folder.state();
+  d.counts = st.counts();
+  d.ranks = st.rankStats();
+  for (const auto& r : d.ranks)
+    if (r.seconds > 0) d.rate += static_cast<double>(r.frames) / r.seconds;
+  const int64_t left = d.counts.frames[0] + d.counts.frames[1];
+  d.eta_s = d.rate > 0 ? static_cast<double>(left) / d.rate : 0.0;
+  d.running = st.units(UnitState::Running);
+  for (const UnitRecord& u : st.units(std::nullopt))
+    if (!u.error.empty()) d.errors.push_back(u);
+  return d;
+}
+
+}  // namespace
+
+std::string statusText(const BuildFolder& folder) {
+  const StatusData d = statusData(folder);
+  const PlanCounts pc = planCounts(folder.plan());
+  std::string s = fmt::format("dataset {} ({}): {} layouts, {} sequences, {} units, {} frames\n",
+                              folder.plan().spec.name, folder.root().string(), pc.layouts,
+                              pc.sequences, d.counts.total(),
+                              d.counts.frames[0] + d.counts.frames[1] + d.counts.frames[2] +
+                                  d.counts.frames[3]);
+  for (int k = 0; k < 4; ++k)
+    s += fmt::format("  {:<8} {:>8} units {:>10} frames\n", unitStateName(UnitState(k)),
+                     d.counts.units[k], d.counts.frames[k]);
+  s += fmt::format("  speed    {:.2f} frames/s", d.rate);
+  if (d.eta_s > 0) s += fmt::format(", ETA {}", formatDuration(d.eta_s));
+  s += "\n";
+  for (const auto& r : d.ranks)
+    s += fmt::format("  rank {:<3} {:>6} units {:>8} frames {:>9.1f} s {:>7.2f} frames/s\n",
+                     r.rank, r.units, r.frames, r.seconds,
+                     r.seconds > 0 ? static_cast<double>(r.frames) / r.seconds : 0.0);
+  for (const UnitRecord& u : d.running)
+    s += fmt::format("  running  {} on rank {}\n", u.id, u.rank);
+  const size_t shown = std::min<size_t>(5, d.errors.size());
+  for (size_t i = d.errors.size() - shown; i < d.errors.size(); ++i)
+    s += fmt::format("  error    {} ({} attempt(s), {}): {}\n", d.errors[i].id,
+                     d.errors[i].attempts, unitStateName(d.errors[i].state), d.errors[i].error);
+  return s;
+}
+
+std::string statusJson(const BuildFolder& folder) {
+  const StatusData d = statusData(folder);
+  nlohmann::ordered_json j;
+  j["dataset"] = folder.plan().spec.name;
+  for (int k = 0; k < 4; ++k)
+    j["units"][unitStateName(UnitState(k))] = d.counts.units[k];
+  for (int k = 0; k < 4; ++k)
+    j["frames"][unitStateName(UnitState(k))] = d.counts.frames[k];
+  j["frames_per_s"] = d.rate;
+  j["eta_s"] = d.eta_s;
+  j["ranks"] = nlohmann::ordered_json::array();
+  for (const auto& r : d.ranks)
+    j["ranks"].push_back({{"rank", r.rank},
+                          {"units", r.units},
+                          {"frames", r.frames},
+                          {"seconds", r.seconds}});
+  j["running"] = nlohmann::ordered_json::array();
+  for (const UnitRecord& u : d.running)
+    j["running"].push_back({{"unit", u.id}, {"rank", u.rank}, {"started", u.started}});
+  j["errors"] = nlohmann::ordered_json::array();
+  for (const UnitRecord& u : d.errors)
+    j["errors"].push_back({{"unit", u.id},
+                           {"state", unitStateName(u.state)},
+                           {"attempts", u.attempts},
+                           {"error", u.error}});
+  return j.dump(2) + "\n";
+}
+
+VerifyReport verifyBuild(const BuildFolder& folder) {
+  VerifyReport v;
+  for (const UnitRecord& u : folder.state().units(UnitState::Done)) {
+    ++v.units;
+    nlohmann::json sums;
+    try {
+      sums = nlohmann::json::parse(u.checksums);
+    } catch (const nlohmann::json::exception&) {
+      v.problems.push_back(u.id + ": its recorded checksums do not parse");
+      continue;
+    }
+    for (const auto& [rel, want] : sums.items()) {
+      ++v.files;
+      const fs::path f = folder.root() / rel;
+      std::error_code ec;
+      if (!fs::is_regular_file(f, ec)) {
+        v.problems.push_back(rel + ": missing (unit " + u.id + ")");
+        continue;
+      }
+      const std::string got = fileChecksum(f);
+      if (got != want.get<std::string>())
+        v.problems.push_back(fmt::format("{}: checksum {} where unit {} recorded {}", rel, got,
+                                         u.id, want.get<std::string>()));
+    }
+  }
+  return v;
+}
+
+}  // namespace inet

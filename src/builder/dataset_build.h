@@ -1,0 +1,73 @@
+#pragma once
+// `interiornet dataset build | status | verify` (issue 16) over a build folder (unit_runner.h):
+// the coordinator that hands out a plan's work units and keeps the job state (build_state.h).
+//
+// A build is resumable at any moment: every file is written atomically, the state records a
+// unit as done only after its files are whole (with their checksums), a unit a killed job left
+// running is run again (the sequence pipeline skips its finished frames), and a failed unit is
+// retried up to max_attempts times. The same plan gives the same bytes whatever the
+// interruptions, the thread count or (with MPI) the rank count.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "builder/build_state.h"
+#include "builder/dataset_plan.h"
+
+namespace inet {
+
+struct BuildOptions {
+  int max_attempts = 3;   ///< runs of a failing unit before it is left failed
+  bool progress = true;   ///< a progress bar over the plan's frames
+  int64_t max_units = 0;  ///< stop after running this many units (0 = all)
+};
+
+struct BuildReport {
+  int64_t units_run = 0, units_done = 0, units_failed = 0;
+  int64_t frames = 0;          ///< frames (and sparse views) of the units done now
+  double wall_s = 0.0;         ///< wall time of the build
+  double unit_s = 0.0;         ///< wall time inside units (the rest is scheduling overhead)
+  int64_t pending_after = 0;   ///< units still pending (max_units, or failures to retry)
+  int64_t failed_total = 0;    ///< units failed for good, over the whole state
+};
+
+/// The plan and state of a build folder. Opens (creates) state.sqlite and syncs it with
+/// plan.json; InputError if the folder holds no plan.
+class BuildFolder {
+ public:
+  explicit BuildFolder(const std::filesystem::path& root);
+  const std::filesystem::path& root() const { return root_; }
+  const DatasetPlan& plan() const { return plan_; }
+  const std::vector<WorkUnit>& units() const { return units_; }
+  /// The unit of a state row (by its order).
+  const WorkUnit& unit(int64_t order) const { return units_.at(static_cast<size_t>(order)); }
+  BuildState& state() { return *state_; }
+  const BuildState& state() const { return *state_; }
+
+ private:
+  std::filesystem::path root_;
+  DatasetPlan plan_;
+  std::vector<WorkUnit> units_;
+  std::unique_ptr<BuildState> state_;
+};
+
+/// Runs every pending unit of the build folder in this process (TBB threads inside each unit),
+/// in plan order. Units a killed job left running are pending again first. A SIGTERM or SIGINT
+/// (core/stop.h) stops after the unit in flight reaches a safe point: that unit goes back to
+/// pending and StopRequested propagates.
+BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt);
+
+/// `dataset status`: units and frames per state, frames/s overall and per rank, ETA, the last
+/// errors. As text for the terminal, or as JSON.
+std::string statusText(const BuildFolder& folder);
+std::string statusJson(const BuildFolder& folder);
+
+/// `dataset verify`: every done unit's files present with their recorded checksums.
+struct VerifyReport {
+  int64_t units = 0, files = 0;
+  std::vector<std::string> problems;  ///< "<path>: missing" or "<path>: checksum ... != ..."
+};
+VerifyReport verifyBuild(const BuildFolder& folder);
+
+}  // namespace inet

@@ -1,0 +1,100 @@
+#pragma once
+// The sequence pipeline as one function: a SequenceJob (plain data: layout source,
+// configurations, trajectory, camera, passes, sensors, formats, seed, frame range) goes
+// layout -> trajectory -> render -> sensors -> dataset writers into one sequence folder per
+// configuration. `interiornet generate` is a thin shell over runSequenceJob (its flags fill a
+// SequenceJob), and the dataset builder (issue 16) calls the same function for its work units.
+//
+// Everything is validated before the first ray; frames stream to disk one at a time (memory stays
+// flat); files are written atomically, so a killed run leaves only whole files and a rerun of the
+// same job skips finished frames and ends with the same bytes. A job may cover a frame range of
+// its sequence: jobs over disjoint ranges, run in any order, in one process or many, write the
+// same bytes as one job over every frame, and the sequence-level files (indexes, boxes.json,
+// events0/) are written by the run that finds every frame complete.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pipeline/sensor_outputs.h"
+#include "pipeline/settings.h"
+#include "render/camera.h"
+
+namespace inet {
+
+struct SequenceJob {
+  SceneSource scene;
+  /// "" (default: the built-in orbit for the built-in room, two-body otherwise), two-body,
+  /// hand-held, look-forward (a random trajectory through the free space), or a trajectory file.
+  std::string trajectory;
+  MotionSettings motion;
+  bool place_trajectory = false;  ///< move a trajectory file into the scene (placePath)
+  double imu_rate = 800.0;        ///< rate of imu0/ when the imu pass is on; 0 = no imu
+  std::string imu_noise = "euroc";
+  int frames = 25;
+  bool frames_set = false;  ///< frames was given (a trajectory file keeps its first `frames`)
+  double fps = 25.0;
+  int spp = 16;
+  int max_bounces = 8;
+  uint64_t seed = 0;
+  std::string passes = "default";  ///< as generate --passes
+  double stereo = 0.0;             ///< > 0: cam1 at this baseline (m)
+  EventSettings events;
+  std::string formats = "asl,tum";
+  std::string sequence = "seq_000";
+  std::string config = "original";  ///< comma list: original, lighting:N, rearranged:N
+  std::string out = "out";  ///< sequences go to <out>/<folder>/<sequence><suffix>/
+  std::string folder;       ///< the layout's folder under `out`; "" = the scene's name
+  std::string contact_sheet;        ///< "" = none
+  bool progress = true;
+  bool denoise = true;
+  bool light_cache = true;
+  bool sun_photons = true;
+  std::string denoiser = "atrous";    ///< atrous or learned (render/neural_denoise.h)
+  bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
+  int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
+  bool temporal_set = false;
+  double exposure_ms = 0.0;
+  double readout_ms = 0.0;
+  LensSettings lens;
+  bool hdr = false;
+  bool allow_dark = false;
+  ResponseSettings response;
+  std::string exposure = "auto";  ///< auto: metered per sequence; fixed
+  CameraIntrinsics K;
+  bool width_set = false, height_set = false, fx_set = false, fy_set = false;
+  bool cx_set = false, cy_set = false;
+
+  /// The frames this job renders: [frame_begin, min(frame_end, frames of the path)).
+  size_t frame_begin = 0;
+  size_t frame_end = std::numeric_limits<size_t>::max();
+  /// Several jobs write the same sequence at once (disjoint frame ranges): nobody removes a
+  /// killed run's temporary files, which may be another job's files in flight.
+  bool shared_folder = false;
+  /// Writes every configuration's sequence-level files (indexes, boxes.json, events0/, the
+  /// contact sheet) when every frame is complete at the end of the job.
+  bool finish = true;
+};
+
+/// What a job did, per configuration in the order of `config`.
+struct SequenceJobResult {
+  struct Sequence {
+    std::string dir;        ///< the sequence folder
+    size_t frames = 0;      ///< frames of the whole sequence
+    size_t rendered = 0;    ///< frames this job rendered
+    size_t skipped = 0;     ///< frames of the range already complete
+    bool finished = false;  ///< the sequence-level files are written: the sequence is whole
+    /// The files this job is answerable for: every file of the range's frames, and when it
+    /// finished the sequence, every file of the folder. Sorted.
+    std::vector<std::string> files;
+  };
+  std::vector<Sequence> sequences;
+};
+
+/// Runs `job` (see above). Throws InputError for bad input, before anything is written where it
+/// can be known then; StopRequested (core/stop.h) at the next frame after SIGINT or SIGTERM when
+/// stop handlers are installed. Uses the calling thread's TBB limits (ThreadLimit in apps/).
+SequenceJobResult runSequenceJob(const SequenceJob& job);
+
+}  // namespace inet
