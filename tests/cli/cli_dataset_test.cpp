@@ -1,0 +1,224 @@
+// Issue 16: interiornet dataset plan | build | status | verify on a small plan (two procedural
+// apartments with parametric furniture, a 4-frame sequence each in 2-frame units, their sparse
+// views in three configurations, 48x36 at 1 spp). The same plan gives the same bytes whatever
+// the threads or the interruptions (SIGKILL mid-unit, SIGTERM), the state agrees with the files
+// (verify), a unit that fails is retried a bounded number of times with its error listed, and
+// bad input is a one-line error.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "cli_util.h"
+#include "core/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace inet::test {
+namespace {
+
+const std::string kSpec = R"(version: 1
+name: tiny
+seed: 3
+layouts:
+  procedural: {count: 2, rooms: [2, 3], furniture: parametric}
+sequences: {per_layout: 1, frames: 4, unit_frames: 2}
+sparse: {batch: 2}
+camera: {width: 48, height: 36, fx: 45, fy: 45}
+render: {spp: 1}
+imu: 200
+)";
+
+/// Every file of a build folder but the job state (whose rows hold times).
+std::map<std::string, std::string> buildTree(const fs::path& dir) {
+  auto t = readTree(dir);
+  for (auto it = t.begin(); it != t.end();)
+    it = it->first.rfind("state.sqlite", 0) == 0 ? t.erase(it) : std::next(it);
+  return t;
+}
+
+void expectSameTree(const std::map<std::string, std::string>& want, const fs::path& dir) {
+  const auto got = buildTree(dir);
+  EXPECT_EQ(got.size(), want.size()) << dir;
+  for (const auto& [name, bytes] : want)
+    EXPECT_TRUE(got.count(name) && got.at(name) == bytes) << name << " differs in " << dir;
+}
+
+size_t colourFrames(const fs::path& data) {
+  size_t n = 0;
+  std::error_code ec;
+  if (!fs::exists(data, ec)) return 0;
+  for (const auto& e : fs::recursive_directory_iterator(data, ec))
+    n += e.path().extension() == ".png" && e.path().parent_path().parent_path().filename() == "cam0";
+  return n;
+}
+
+/// Starts `interiornet args` and sends `sig` once `frames` colour frames exist under data;
+/// returns the wait status.
+int signalAfterFrames(const std::string& args, const fs::path& data, size_t frames, int sig) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = std::string("exec ") + INET_BINARY + " " + args + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (colourFrames(data) < frames && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+class CliDataset : public ::testing::Test {
+ protected:
+  void SetUp() override { writeFile(dir_ / "tiny.yaml", kSpec); }
+  std::string spec() const { return (dir_ / "tiny.yaml").string(); }
+  /// plan + build into `name` with `threads`; the build's result
+  RunResult planAndBuild(const std::string& name, int threads) {
+    const RunResult p = runInterinet("dataset plan " + spec() + " --out " + (dir_ / name).string());
+    EXPECT_EQ(p.exit_code, 0) << p.err;
+    return runInterinet("dataset build " + (dir_ / name).string() + " --no-progress --threads " +
+                        std::to_string(threads));
+  }
+  TempDir dir_{"dataset"};
+};
+
+TEST_F(CliDataset, PlanBuildStatusVerifyAndTheSameBytesWhateverTheThreadsOrStops) {
+  const RunResult plan = runInterinet("dataset plan " + spec() + " --out " + (dir_ / "a").string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_NE(plan.out.find("2 layouts, 2 sequences (8 frames), 6 sparse views, 5 work units"),
+            std::string::npos)
+      << plan.out;
+  const RunResult a = runInterinet("dataset build " + (dir_ / "a").string() +
+                                   " --no-progress --threads 2");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.out.find("5 done, 14 frames"), std::string::npos) << a.out;
+  const auto want = buildTree(dir_ / "a");
+  // every sequence folder whole: indexes, boxes.json, imu0/ and its sparse views
+  size_t sequences = 0, sparse = 0;
+  for (const auto& [name, bytes] : want) {
+    sequences += name.size() > 16 && name.compare(name.size() - 16, 16, "/seq_000/rgb.txt") == 0;
+    sparse += name.find("/sparse") != std::string::npos &&
+              name.compare(name.size() - 8, 8, "/rgb.txt") == 0;
+  }
+  EXPECT_EQ(sequences, 2u);
+  EXPECT_EQ(sparse, 6u);
+
+  const RunResult status = runInterinet("dataset status " + (dir_ / "a").string());
+  ASSERT_EQ(status.exit_code, 0) << status.err;
+  EXPECT_NE(status.out.find("done            5 units         14 frames"), std::string::npos)
+      << status.out;
+  const RunResult json = runInterinet("dataset status --json " + (dir_ / "a").string());
+  EXPECT_NE(json.out.find("\"done\": 5"), std::string::npos) << json.out;
+  const RunResult verify = runInterinet("dataset verify " + (dir_ / "a").string());
+  ASSERT_EQ(verify.exit_code, 0) << verify.err;
+
+  // one thread: the same bytes
+  ASSERT_EQ(planAndBuild("b", 1).exit_code, 0);
+  expectSameTree(want, dir_ / "b");
+
+  // SIGKILL mid-unit, then a rerun: the same bytes, and verify passes
+  const std::string c = (dir_ / "c").string();
+  ASSERT_EQ(runInterinet("dataset plan " + spec() + " --out " + c).exit_code, 0);
+  const int killed = signalAfterFrames("dataset build " + c + " --no-progress", dir_ / "c" / "data",
+                                       3, SIGKILL);
+  EXPECT_TRUE(WIFSIGNALED(killed));
+  const RunResult after_kill = runInterinet("dataset status --json " + c);
+  EXPECT_NE(after_kill.out.find("\"running\": 1"), std::string::npos) << after_kill.out;
+  const RunResult resumed = runInterinet("dataset build " + c + " --no-progress");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("resuming: 1 unit(s)"), std::string::npos) << resumed.err;
+  expectSameTree(want, dir_ / "c");
+  EXPECT_EQ(runInterinet("dataset verify " + c).exit_code, 0);
+
+  // SIGTERM (a scheduler's warning): a clean stop with 143, no unit left running, then resumed
+  const std::string d = (dir_ / "d").string();
+  ASSERT_EQ(runInterinet("dataset plan " + spec() + " --out " + d).exit_code, 0);
+  const int termed = signalAfterFrames("dataset build " + d + " --no-progress", dir_ / "d" / "data",
+                                       1, SIGTERM);
+  ASSERT_TRUE(WIFEXITED(termed));
+  EXPECT_EQ(WEXITSTATUS(termed), 143);
+  const RunResult after_term = runInterinet("dataset status --json " + d);
+  EXPECT_NE(after_term.out.find("\"running\": 0"), std::string::npos) << after_term.out;
+  ASSERT_EQ(runInterinet("dataset build " + d + " --no-progress").exit_code, 0);
+  expectSameTree(want, dir_ / "d");
+
+  // verify finds a changed file and a missing one, naming them
+  fs::path victim, gone;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "a" / "data"))
+    if (e.path().extension() == ".png") (victim.empty() ? victim : gone) = e.path();
+  {
+    std::ofstream f(victim, std::ios::binary | std::ios::app);
+    f << "x";
+  }
+  fs::remove(gone);
+  const RunResult bad = runInterinet("dataset verify " + (dir_ / "a").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find(victim.filename().string() + ": checksum"), std::string::npos)
+      << bad.err;
+  EXPECT_NE(bad.err.find(gone.filename().string() + ": missing"), std::string::npos) << bad.err;
+}
+
+TEST_F(CliDataset, AFailingUnitIsRetriedAndListedAndTheRestIsBuilt) {
+  // a folder layout that is JSON but not a layout: its units fail, the apartment's do not
+  writeFile(dir_ / "layouts" / "broken.json", R"({"rooms": [1, 2]})");
+  std::string text = kSpec;
+  text.replace(text.find("count: 2"), 8, "count: 1");
+  const std::string layouts = "  procedural: {count: 1, rooms: [2, 3], furniture: parametric}\n";
+  text.insert(text.find(layouts) + layouts.size(), "  folders: [layouts]\n");
+  writeFile(dir_ / "mixed.yaml", text);
+  const std::string out = (dir_ / "m").string();
+  const RunResult plan = runInterinet("dataset plan " + (dir_ / "mixed.yaml").string() +
+                                      " --out " + out);
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const RunResult build = runInterinet("dataset build " + out + " --no-progress --max-attempts 2");
+  EXPECT_EQ(build.exit_code, 2) << build.err;
+  EXPECT_NE(build.err.find("failed 2 time(s) each"), std::string::npos) << build.err;
+  EXPECT_NE(build.err.find("attempt 2 of 2"), std::string::npos) << build.err;
+  const RunResult status = runInterinet("dataset status " + out);
+  EXPECT_NE(status.out.find("error    seq/file:layouts/broken.json"), std::string::npos)
+      << status.out;
+  EXPECT_NE(status.out.find("broken.json"), std::string::npos) << status.out;
+  // the apartment's sequence is whole
+  size_t whole = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "m" / "data"))
+    whole += e.path().filename() == "rgb.txt" && e.path().parent_path().filename() == "seq_000";
+  EXPECT_EQ(whole, 1u);
+  EXPECT_EQ(runInterinet("dataset verify " + out).exit_code, 0);
+}
+
+TEST_F(CliDataset, BadInputIsAOneLineErrorAndWritesNothing) {
+  writeFile(dir_ / "bad.yaml", "version: 1\nname: x\nlayouts: {procedural: {count: 1}}\nsequence: {}\n");
+  const RunResult bad = runInterinet("dataset plan " + (dir_ / "bad.yaml").string() + " --out " +
+                                     (dir_ / "x").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.yaml"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("sequence"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("line 4"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
+  const RunResult none = runInterinet("dataset build " + (dir_ / "nowhere").string());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("no plan.json"), std::string::npos) << none.err;
+  // a build folder belongs to its plan
+  const std::string out = (dir_ / "p").string();
+  ASSERT_EQ(runInterinet("dataset plan " + spec() + " --out " + out).exit_code, 0);
+  ASSERT_EQ(runInterinet("dataset status " + out).exit_code, 0);  // creates the state
+  std::string other = kSpec;
+  other.replace(other.find("seed: 3"), 7, "seed: 4");
+  writeFile(dir_ / "other.yaml", other);
+  const RunResult replan =
+      runInterinet("dataset plan " + (dir_ / "other.yaml").string() + " --out " + out);
+  EXPECT_EQ(replan.exit_code, 2);
+  EXPECT_NE(replan.err.find("another plan"), std::string::npos) << replan.err;
+}
+
+}  // namespace
+}  // namespace inet::test
