@@ -1,6 +1,7 @@
 // interiornet dataset plan | build | status | verify (issue 16, docs/dataset.md): a dataset spec
 // into a plan, the plan's work units into sequence folders, resumably, with the job state in
 // SQLite. Thin over src/builder/.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "builder/dataset_build.h"
 #include "builder/dataset_plan.h"
 #include "builder/dataset_spec.h"
+#include "builder/mpi_build.h"
 #include "common.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -54,13 +56,24 @@ void runBuild(const BuildArgs& a) {
   if (a.opt.max_attempts < 1) throw InputError("", "--max-attempts", "must be >= 1");
   if (a.opt.max_units < 0) throw InputError("", "--max-units", "must be >= 0");
   ThreadLimit limit(a.threads);
-  BuildFolder folder(a.dir);
-  const BuildReport r = buildLocal(folder, a.opt);
-  fmt::print("ran {} unit(s) in {:.1f} s ({:.1f} s in units, {:.2f} % overhead): {} done, {} "
-             "frames\n",
-             r.units_run, r.wall_s, r.unit_s,
-             r.wall_s > 0 ? 100.0 * (r.wall_s - r.unit_s) / r.wall_s : 0.0, r.units_done,
-             r.frames);
+  BuildReport r;
+  if (launchedByMpi()) {
+    int rank = 0, ranks = 1;
+    r = buildMpi(a.dir, a.opt, &rank, &ranks);
+    if (rank != 0) return;  // rank 0 speaks for the build
+    fmt::print("{} rank(s): 1 coordinator, {} worker(s) x {} thread(s)\n", ranks,
+               std::max(ranks - 1, 1), limit.threads());
+  } else {
+    BuildFolder folder(a.dir);
+    r = buildLocal(folder, a.opt);
+  }
+  // the share of the workers' wall time not spent inside units: scheduling, waiting, idling
+  const double worker_s = r.wall_s * r.workers;
+  fmt::print("ran {} unit(s) in {:.1f} s ({:.1f} s in units over {} worker(s), {:.2f} % of their "
+             "time outside units): {} done, {} frames\n",
+             r.units_run, r.wall_s, r.unit_s, r.workers,
+             worker_s > 0 ? 100.0 * std::max(0.0, worker_s - r.unit_s) / worker_s : 0.0,
+             r.units_done, r.frames);
   if (r.failed_total > 0)
     throw InputError(a.dir, "units",
                      fmt::format("{} unit(s) failed {} time(s) each; `interiornet dataset status "
@@ -111,7 +124,9 @@ void registerDataset(CLI::App& app) {
   auto* b = cmd->add_subcommand(
       "build", "Run the plan's pending work units into DIR/data (sequence frame ranges and "
                "batches of sparse views), recording each in DIR/state.sqlite; stop it at any "
-               "time (SIGTERM, Ctrl-C, a kill) and rerun to finish the rest, with the same bytes");
+               "time (SIGTERM, Ctrl-C, a kill) and rerun to finish the rest, with the same bytes. "
+               "Under mpirun (mpirun -np N interiornet dataset build DIR) rank 0 hands units to "
+               "ranks 1..N-1 as they free up (docs/cluster.md)");
   b->add_option("DIR", build->dir, "the build folder (with plan.json)")->required();
   b->add_option("--threads", build->threads,
                 "worker threads, 0 = all cores (default 0); never changes the output");

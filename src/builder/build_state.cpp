@@ -205,6 +205,12 @@ void BuildState::markDone(const std::string& id, double seconds, const std::stri
   s.bind(1, seconds).bind(2, checksums).bind(3, id).step();
 }
 
+void BuildState::release(const std::string& id) {
+  Statement s(db_, "UPDATE units SET state = 0, rank = -1, started = 0 WHERE id = ? AND state = 1",
+              path_);
+  s.bind(1, id).step();
+}
+
 void BuildState::markFailed(const std::string& id, const std::string& error, int max_attempts) {
   Statement s(db_,
               "UPDATE units SET attempts = attempts + 1, error = ?, rank = -1, "

@@ -60,6 +60,8 @@ class BuildState {
   /// The first pending unit in order, marked running on `rank`; none when nothing is pending.
   std::optional<UnitRecord> claim(int rank, double now);
   void markDone(const std::string& id, double seconds, const std::string& checksums);
+  /// A running unit goes back to pending without counting an attempt (its rank was stopped).
+  void release(const std::string& id);
   /// Counts an attempt; the unit goes back to pending while attempts < max_attempts, else to
   /// failed.
   void markFailed(const std::string& id, const std::string& error, int max_attempts);

@@ -31,7 +31,7 @@ double steadySeconds() {
 
 }  // namespace
 
-BuildFolder::BuildFolder(const fs::path& root) : root_(root) {
+BuildFolder::BuildFolder(const fs::path& root, bool with_state) : root_(root) {
   const fs::path plan_file = root / "plan.json";
   std::error_code ec;
   if (!fs::is_regular_file(plan_file, ec))
@@ -40,6 +40,7 @@ BuildFolder::BuildFolder(const fs::path& root) : root_(root) {
                      "SPEC --out " + root.string() + "`)");
   plan_ = readPlan(plan_file);
   units_ = inet::units(plan_);
+  if (!with_state) return;
   state_ = std::make_unique<BuildState>(root / "state.sqlite");
   std::vector<std::pair<std::string, int64_t>> rows;
   rows.reserve(units_.size());
@@ -68,29 +69,21 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
     const std::optional<UnitRecord> r = state.claim(0, nowSeconds());
     if (!r) break;
     const WorkUnit& unit = folder.unit(r->order);
-    const double u0 = steadySeconds();
     ++report.units_run;
-    try {
-      const UnitOutput out = runUnit(folder.plan(), unit, folder.root());
-      const double seconds = steadySeconds() - u0;
-      state.markDone(unit.id, seconds, out.checksums);
-      report.unit_s += seconds;
+    const UnitResult result = runUnitCaught(folder, unit);
+    report.unit_s += result.seconds;
+    const UnitState after = recordResult(folder, unit, 0, result, opt);
+    if (result.kind == UnitResult::Kind::Stopped) {
+      bar.finish();
+      stopIfSignalled("during unit " + unit.id);
+    }
+    if (after == UnitState::Done) {
       ++report.units_done;
       report.frames += unit.frames;
       frames_done += unit.frames;
       bar.update(frames_done);
-    } catch (const StopRequested&) {
-      report.unit_s += steadySeconds() - u0;
-      state.resetRunning();  // the unit in flight is not done: the rerun does it
-      bar.finish();
-      throw;
-    } catch (const std::exception& e) {
-      report.unit_s += steadySeconds() - u0;
-      state.markFailed(unit.id, e.what(), opt.max_attempts);
-      const auto after = state.unit(unit.id);
-      std::fprintf(stderr, "unit %s failed (attempt %d of %d): %s\n", unit.id.c_str(),
-                   after ? after->attempts : 0, opt.max_attempts, e.what());
-      if (after && after->state == UnitState::Failed) ++report.units_failed;
+    } else if (after == UnitState::Failed) {
+      ++report.units_failed;
     }
   }
   bar.finish();
@@ -99,6 +92,43 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
   report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
   report.wall_s = steadySeconds() - t0;
   return report;
+}
+
+UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
+  UnitResult r;
+  const double t0 = steadySeconds();
+  try {
+    r.text = runUnit(folder.plan(), unit, folder.root()).checksums;
+    r.kind = UnitResult::Kind::Done;
+  } catch (const StopRequested& e) {
+    r.kind = UnitResult::Kind::Stopped;
+    r.text = e.what();
+  } catch (const std::exception& e) {
+    r.kind = UnitResult::Kind::Failed;
+    r.text = e.what();
+  }
+  r.seconds = steadySeconds() - t0;
+  return r;
+}
+
+UnitState recordResult(BuildFolder& folder, const WorkUnit& unit, int rank,
+                       const UnitResult& result, const BuildOptions& opt) {
+  BuildState& state = folder.state();
+  switch (result.kind) {
+    case UnitResult::Kind::Done:
+      state.markDone(unit.id, result.seconds, result.text);
+      return UnitState::Done;
+    case UnitResult::Kind::Stopped:
+      state.release(unit.id);  // not done: a rerun does it
+      return UnitState::Pending;
+    case UnitResult::Kind::Failed:
+      break;
+  }
+  state.markFailed(unit.id, result.text, opt.max_attempts);
+  const auto after = state.unit(unit.id);
+  std::fprintf(stderr, "unit %s failed on rank %d (attempt %d of %d): %s\n", unit.id.c_str(),
+               rank, after ? after->attempts : 0, opt.max_attempts, result.text.c_str());
+  return after ? after->state : UnitState::Failed;
 }
 
 namespace {

@@ -27,21 +27,24 @@ struct BuildReport {
   int64_t units_run = 0, units_done = 0, units_failed = 0;
   int64_t frames = 0;          ///< frames (and sparse views) of the units done now
   double wall_s = 0.0;         ///< wall time of the build
-  double unit_s = 0.0;         ///< wall time inside units (the rest is scheduling overhead)
+  double unit_s = 0.0;         ///< wall time inside units, summed over the workers
+  int workers = 1;             ///< ranks that ran units (the rest of their time is overhead)
   int64_t pending_after = 0;   ///< units still pending (max_units, or failures to retry)
   int64_t failed_total = 0;    ///< units failed for good, over the whole state
 };
 
 /// The plan and state of a build folder. Opens (creates) state.sqlite and syncs it with
-/// plan.json; InputError if the folder holds no plan.
+/// plan.json, unless `with_state` is false (an MPI worker: only the coordinator touches the
+/// state); InputError if the folder holds no plan.
 class BuildFolder {
  public:
-  explicit BuildFolder(const std::filesystem::path& root);
+  explicit BuildFolder(const std::filesystem::path& root, bool with_state = true);
   const std::filesystem::path& root() const { return root_; }
   const DatasetPlan& plan() const { return plan_; }
   const std::vector<WorkUnit>& units() const { return units_; }
   /// The unit of a state row (by its order).
   const WorkUnit& unit(int64_t order) const { return units_.at(static_cast<size_t>(order)); }
+  bool hasState() const { return state_ != nullptr; }
   BuildState& state() { return *state_; }
   const BuildState& state() const { return *state_; }
 
@@ -57,6 +60,19 @@ class BuildFolder {
 /// (core/stop.h) stops after the unit in flight reaches a safe point: that unit goes back to
 /// pending and StopRequested propagates.
 BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt);
+
+/// What one unit did, as a rank reports it to the coordinator.
+struct UnitResult {
+  enum class Kind { Done, Failed, Stopped } kind = Kind::Done;
+  double seconds = 0.0;
+  std::string text;  ///< Done: the checksums; Failed: the error; Stopped: the message
+};
+/// Runs one unit and says how it went (never throws, but for a bug).
+UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit);
+
+/// The coordinator's side of a result: records it in the state; returns the unit's state after.
+UnitState recordResult(BuildFolder& folder, const WorkUnit& unit, int rank,
+                       const UnitResult& result, const BuildOptions& opt);
 
 /// `dataset status`: units and frames per state, frames/s overall and per rank, ETA, the last
 /// errors. As text for the terminal, or as JSON.

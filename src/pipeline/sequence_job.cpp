@@ -766,8 +766,10 @@ SequenceJobResult::Sequence renderSequence(
   std::printf("wrote %zu frames to %s\n", traj.size(), dir.string().c_str());
   result.finished = true;
   result.files.clear();
+  // (not another job's temporary files: one finishing the same sequence at the same moment)
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) result.files.push_back(e.path().string());
+    if (e.is_regular_file() && !isTemporaryName(e.path().filename().string()))
+      result.files.push_back(e.path().string());
   std::sort(result.files.begin(), result.files.end());
   // a signal during the last step: the sequence is whole, but the job was asked to stop
   stopIfSignalled(fmt::format("after writing {} completely", dir.string()));

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -77,57 +78,125 @@ int signalAfterFrames(const std::string& args, const fs::path& data, size_t fram
   return status;
 }
 
+/// The mpirun command line of the tests: shared memory only (no network needed), as root too
+/// (CI runs as root), more ranks than cores allowed. Empty when mpirun is not installed.
+std::string mpirun(int ranks) {
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) return "";
+  return "mpirun --allow-run-as-root --oversubscribe --mca btl self,vader -np " +
+         std::to_string(ranks) + " ";
+}
+
+/// Starts `command` (a shell command line) and returns its pid.
+pid_t spawnShell(const std::string& command) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec " + command + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
 class CliDataset : public ::testing::Test {
  protected:
-  void SetUp() override { writeFile(dir_ / "tiny.yaml", kSpec); }
-  std::string spec() const { return (dir_ / "tiny.yaml").string(); }
-  /// plan + build into `name` with `threads`; the build's result
-  RunResult planAndBuild(const std::string& name, int threads) {
-    const RunResult p = runInterinet("dataset plan " + spec() + " --out " + (dir_ / name).string());
-    EXPECT_EQ(p.exit_code, 0) << p.err;
-    return runInterinet("dataset build " + (dir_ / name).string() + " --no-progress --threads " +
-                        std::to_string(threads));
+  /// One reference build, made by the first test of this process that needs it (ctest runs
+  /// each test in its own process): plan and a local build with two threads.
+  static void SetUpTestSuite() {
+    shared_ = new TempDir("dataset_ref");
+    writeFile(*shared_ / "tiny.yaml", kSpec);
   }
+  static void TearDownTestSuite() {
+    delete reference_;
+    delete shared_;
+  }
+  static void buildReference() {
+    if (reference_) return;
+    const std::string ref = (*shared_ / "ref").string();
+    plan_ = runInterinet("dataset plan " + (*shared_ / "tiny.yaml").string() + " --out " + ref);
+    build_ = runInterinet("dataset build " + ref + " --no-progress --threads 2");
+    reference_ = new std::map<std::string, std::string>(buildTree(ref));
+    ASSERT_EQ(plan_.exit_code, 0) << plan_.err;
+    ASSERT_EQ(build_.exit_code, 0) << build_.err;
+  }
+  static std::string spec() { return (*shared_ / "tiny.yaml").string(); }
+  /// A new build folder with the reference's plan.
+  std::string planned(const std::string& name) {
+    const std::string out = (dir_ / name).string();
+    const RunResult p = runInterinet("dataset plan " + spec() + " --out " + out);
+    EXPECT_EQ(p.exit_code, 0) << p.err;
+    return out;
+  }
+  static TempDir* shared_;
+  static RunResult plan_, build_;
+  static std::map<std::string, std::string>* reference_;
   TempDir dir_{"dataset"};
 };
+TempDir* CliDataset::shared_ = nullptr;
+RunResult CliDataset::plan_, CliDataset::build_;
+std::map<std::string, std::string>* CliDataset::reference_ = nullptr;
 
-TEST_F(CliDataset, PlanBuildStatusVerifyAndTheSameBytesWhateverTheThreadsOrStops) {
-  const RunResult plan = runInterinet("dataset plan " + spec() + " --out " + (dir_ / "a").string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.err;
-  EXPECT_NE(plan.out.find("2 layouts, 2 sequences (8 frames), 6 sparse views, 5 work units"),
+TEST_F(CliDataset, PlanBuildStatusAndVerify) {
+  ASSERT_NO_FATAL_FAILURE(buildReference());
+  EXPECT_NE(plan_.out.find("2 layouts, 2 sequences (8 frames), 6 sparse views, 5 work units"),
             std::string::npos)
-      << plan.out;
-  const RunResult a = runInterinet("dataset build " + (dir_ / "a").string() +
-                                   " --no-progress --threads 2");
-  ASSERT_EQ(a.exit_code, 0) << a.err;
-  EXPECT_NE(a.out.find("5 done, 14 frames"), std::string::npos) << a.out;
-  const auto want = buildTree(dir_ / "a");
-  // every sequence folder whole: indexes, boxes.json, imu0/ and its sparse views
-  size_t sequences = 0, sparse = 0;
-  for (const auto& [name, bytes] : want) {
-    sequences += name.size() > 16 && name.compare(name.size() - 16, 16, "/seq_000/rgb.txt") == 0;
-    sparse += name.find("/sparse") != std::string::npos &&
-              name.compare(name.size() - 8, 8, "/rgb.txt") == 0;
+      << plan_.out;
+  EXPECT_NE(build_.out.find("5 done, 14 frames"), std::string::npos) << build_.out;
+  // every sequence folder whole: indexes, boxes.json, imu0/, and the sparse views
+  size_t sequences = 0, sparse = 0, boxes = 0, imu = 0;
+  for (const auto& [name, bytes] : *reference_) {
+    const fs::path p(name);
+    sequences += p.filename() == "rgb.txt" && p.parent_path().filename() == "seq_000";
+    sparse += p.filename() == "rgb.txt" &&
+              p.parent_path().filename().string().rfind("sparse", 0) == 0;
+    boxes += p.filename() == "boxes.json";
+    imu += p.filename() == "sensor.yaml" && p.parent_path().filename() == "imu0";
   }
   EXPECT_EQ(sequences, 2u);
   EXPECT_EQ(sparse, 6u);
+  EXPECT_EQ(boxes, 8u);
+  EXPECT_EQ(imu, 2u);
+  // data/<split>/<subset>/<layout>/...
+  for (const auto& [name, bytes] : *reference_) {
+    if (name.rfind("data/", 0) != 0) continue;
+    const std::string split = name.substr(5, name.find('/', 5) - 5);
+    EXPECT_TRUE(split == "train" || split == "validation" || split == "test") << name;
+    EXPECT_NE(name.find("/rooms_0"), std::string::npos) << name;
+  }
 
-  const RunResult status = runInterinet("dataset status " + (dir_ / "a").string());
+  const std::string ref = (*shared_ / "ref").string();
+  const RunResult status = runInterinet("dataset status " + ref);
   ASSERT_EQ(status.exit_code, 0) << status.err;
   EXPECT_NE(status.out.find("done            5 units         14 frames"), std::string::npos)
       << status.out;
-  const RunResult json = runInterinet("dataset status --json " + (dir_ / "a").string());
+  EXPECT_NE(status.out.find("rank 0 "), std::string::npos) << status.out;
+  const RunResult json = runInterinet("dataset status --json " + ref);
   EXPECT_NE(json.out.find("\"done\": 5"), std::string::npos) << json.out;
-  const RunResult verify = runInterinet("dataset verify " + (dir_ / "a").string());
+  const RunResult verify = runInterinet("dataset verify " + ref);
   ASSERT_EQ(verify.exit_code, 0) << verify.err;
+  EXPECT_NE(verify.out.find("of 5 done unit(s): all present"), std::string::npos) << verify.out;
 
-  // one thread: the same bytes
-  ASSERT_EQ(planAndBuild("b", 1).exit_code, 0);
-  expectSameTree(want, dir_ / "b");
+  // verify finds a changed file and a missing one, naming them (in a copy)
+  fs::copy(*shared_ / "ref", dir_ / "v", fs::copy_options::recursive);
+  fs::path victim, gone;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "v" / "data"))
+    if (e.path().extension() == ".png") (victim.empty() ? victim : gone) = e.path();
+  {
+    std::ofstream f(victim, std::ios::binary | std::ios::app);
+    f << "x";
+  }
+  fs::remove(gone);
+  const RunResult bad = runInterinet("dataset verify " + (dir_ / "v").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find(victim.filename().string() + ": checksum"), std::string::npos)
+      << bad.err;
+  EXPECT_NE(bad.err.find(gone.filename().string() + ": missing"), std::string::npos) << bad.err;
+}
 
-  // SIGKILL mid-unit, then a rerun: the same bytes, and verify passes
-  const std::string c = (dir_ / "c").string();
-  ASSERT_EQ(runInterinet("dataset plan " + spec() + " --out " + c).exit_code, 0);
+// SIGKILL mid-unit, then a rerun; SIGTERM (a scheduler's warning): exit 143 with no unit left
+// running, then a rerun. Both end with the reference's bytes, and verify passes.
+TEST_F(CliDataset, KilledOrStoppedBuildsResumeToTheSameBytes) {
+  ASSERT_NO_FATAL_FAILURE(buildReference());
+  const std::string c = planned("c");
   const int killed = signalAfterFrames("dataset build " + c + " --no-progress", dir_ / "c" / "data",
                                        3, SIGKILL);
   EXPECT_TRUE(WIFSIGNALED(killed));
@@ -136,12 +205,10 @@ TEST_F(CliDataset, PlanBuildStatusVerifyAndTheSameBytesWhateverTheThreadsOrStops
   const RunResult resumed = runInterinet("dataset build " + c + " --no-progress");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.err.find("resuming: 1 unit(s)"), std::string::npos) << resumed.err;
-  expectSameTree(want, dir_ / "c");
+  expectSameTree(*reference_, dir_ / "c");
   EXPECT_EQ(runInterinet("dataset verify " + c).exit_code, 0);
 
-  // SIGTERM (a scheduler's warning): a clean stop with 143, no unit left running, then resumed
-  const std::string d = (dir_ / "d").string();
-  ASSERT_EQ(runInterinet("dataset plan " + spec() + " --out " + d).exit_code, 0);
+  const std::string d = planned("d");
   const int termed = signalAfterFrames("dataset build " + d + " --no-progress", dir_ / "d" / "data",
                                        1, SIGTERM);
   ASSERT_TRUE(WIFEXITED(termed));
@@ -149,22 +216,45 @@ TEST_F(CliDataset, PlanBuildStatusVerifyAndTheSameBytesWhateverTheThreadsOrStops
   const RunResult after_term = runInterinet("dataset status --json " + d);
   EXPECT_NE(after_term.out.find("\"running\": 0"), std::string::npos) << after_term.out;
   ASSERT_EQ(runInterinet("dataset build " + d + " --no-progress").exit_code, 0);
-  expectSameTree(want, dir_ / "d");
+  expectSameTree(*reference_, dir_ / "d");
+}
 
-  // verify finds a changed file and a missing one, naming them
-  fs::path victim, gone;
-  for (const auto& e : fs::recursive_directory_iterator(dir_ / "a" / "data"))
-    if (e.path().extension() == ".png") (victim.empty() ? victim : gone) = e.path();
-  {
-    std::ofstream f(victim, std::ios::binary | std::ios::app);
-    f << "x";
-  }
-  fs::remove(gone);
-  const RunResult bad = runInterinet("dataset verify " + (dir_ / "a").string());
-  EXPECT_NE(bad.exit_code, 0);
-  EXPECT_NE(bad.err.find(victim.filename().string() + ": checksum"), std::string::npos)
-      << bad.err;
-  EXPECT_NE(bad.err.find(gone.filename().string() + ": missing"), std::string::npos) << bad.err;
+// The MPI path for real: mpirun -np 1 (one thread) and -np 3 (a coordinator and two workers of
+// one thread each; one worker SIGKILLed mid-unit, which takes the job down, then a rerun) both
+// end with the bytes of the threaded reference build.
+TEST_F(CliDataset, MpiRanksGiveTheSameBytesAndSurviveAKilledRank) {
+  if (mpirun(1).empty()) GTEST_SKIP() << "mpirun not found (Debian: openmpi-bin)";
+  ASSERT_NO_FATAL_FAILURE(buildReference());
+  const std::string one = planned("one");
+  ASSERT_EQ(std::system((mpirun(1) + INET_BINARY + " dataset build " + one +
+                         " --no-progress --threads 1 >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  expectSameTree(*reference_, dir_ / "one");
+
+  const std::string three = planned("three");
+  const std::string cmd =
+      mpirun(3) + INET_BINARY + " dataset build " + three + " --no-progress --threads 1";
+  const pid_t job = spawnShell(cmd);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (colourFrames(dir_ / "three" / "data") < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  // a worker: the newest process building this folder that is not mpirun itself
+  const int rc = std::system(("kill -9 $(pgrep -n -f '^" + std::string(INET_BINARY) +
+                              " dataset build " + three + "')")
+                                 .c_str());
+  EXPECT_EQ(rc, 0);
+  int status = 0;
+  waitpid(job, &status, 0);
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the job went on without a rank";
+  const RunResult mid = runInterinet("dataset status --json " + three);
+  EXPECT_NE(mid.out.find("\"pending\""), std::string::npos) << mid.out;
+  ASSERT_EQ(std::system((cmd + " >/dev/null 2>&1").c_str()), 0);
+  expectSameTree(*reference_, dir_ / "three");
+  const RunResult status3 = runInterinet("dataset status " + three);
+  EXPECT_NE(status3.out.find("rank 1 "), std::string::npos) << status3.out;
+  EXPECT_NE(status3.out.find("rank 2 "), std::string::npos) << status3.out;
+  EXPECT_EQ(runInterinet("dataset verify " + three).exit_code, 0);
 }
 
 TEST_F(CliDataset, AFailingUnitIsRetriedAndListedAndTheRestIsBuilt) {

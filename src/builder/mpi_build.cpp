@@ -1,0 +1,208 @@
+#include "builder/mpi_build.h"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stop.h"
+
+namespace inet {
+
+namespace {
+
+constexpr int kTagReport = 1;  // worker -> coordinator: a result and a request for work
+constexpr int kTagWork = 2;    // coordinator -> worker: a unit's order, or -1: stop
+
+enum ReportKind : int64_t { kHello = 0, kDone = 1, kFailed = 2, kStopped = 3 };
+
+double steadySeconds() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+double nowSeconds() {
+  using namespace std::chrono;
+  return duration<double>(system_clock::now().time_since_epoch()).count();
+}
+
+/// A report as bytes: kind, unit order, seconds (as bits), then the text.
+std::vector<char> pack(int64_t kind, int64_t order, double seconds, const std::string& text) {
+  std::vector<char> buf(3 * sizeof(int64_t) + text.size());
+  std::memcpy(buf.data(), &kind, sizeof kind);
+  std::memcpy(buf.data() + 8, &order, sizeof order);
+  std::memcpy(buf.data() + 16, &seconds, sizeof seconds);
+  std::memcpy(buf.data() + 24, text.data(), text.size());
+  return buf;
+}
+
+void sendReport(int64_t kind, int64_t order, double seconds, const std::string& text) {
+  const std::vector<char> buf = pack(kind, order, seconds, text);
+  MPI_Send(buf.data(), static_cast<int>(buf.size()), MPI_BYTE, 0, kTagReport, MPI_COMM_WORLD);
+}
+
+int64_t receiveWork() {
+  int64_t order = -1;
+  // poll rather than block: Open MPI's blocking receive spins a core, which the renderer of
+  // another rank on the same machine needs
+  int flag = 0;
+  MPI_Status st;
+  while (true) {
+    MPI_Iprobe(0, kTagWork, MPI_COMM_WORLD, &flag, &st);
+    if (flag) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  MPI_Recv(&order, 1, MPI_INT64_T, 0, kTagWork, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return order;
+}
+
+void sendWork(int rank, int64_t order) {
+  MPI_Send(&order, 1, MPI_INT64_T, rank, kTagWork, MPI_COMM_WORLD);
+}
+
+BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) {
+  BuildState& state = folder.state();
+  BuildReport report;
+  const double t0 = steadySeconds();
+  const int64_t again = state.resetRunning();
+  const int64_t retried = state.retryFailed(opt.max_attempts);
+  if (again > 0)
+    std::fprintf(stderr, "resuming: %lld unit(s) a stopped build left running run again\n",
+                 static_cast<long long>(again));
+  if (retried > 0)
+    std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+  StateCounts c = state.counts();
+  int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
+  ProgressBar bar(c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3], "frames",
+                  opt.progress);
+  bar.update(frames_done);
+  int active = ranks - 1;
+  int64_t handed = 0;
+  std::vector<char> buf;
+  while (active > 0) {
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(MPI_ANY_SOURCE, kTagReport, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    int bytes = 0;
+    MPI_Get_count(&st, MPI_BYTE, &bytes);
+    buf.resize(static_cast<size_t>(std::max(bytes, 24)));
+    MPI_Recv(buf.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kTagReport, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    int64_t kind = 0, order = -1;
+    double seconds = 0.0;
+    std::memcpy(&kind, buf.data(), 8);
+    std::memcpy(&order, buf.data() + 8, 8);
+    std::memcpy(&seconds, buf.data() + 16, 8);
+    const int rank = st.MPI_SOURCE;
+    bool stop_rank = false;
+    if (kind != kHello && order >= 0) {
+      const WorkUnit& unit = folder.unit(order);
+      UnitResult r;
+      r.kind = kind == kDone     ? UnitResult::Kind::Done
+               : kind == kFailed ? UnitResult::Kind::Failed
+                                 : UnitResult::Kind::Stopped;
+      r.seconds = seconds;
+      r.text.assign(buf.data() + 24, static_cast<size_t>(bytes - 24));
+      report.unit_s += seconds;
+      const UnitState after = recordResult(folder, unit, rank, r, opt);
+      if (after == UnitState::Done) {
+        ++report.units_done;
+        report.frames += unit.frames;
+        frames_done += unit.frames;
+        bar.update(frames_done);
+      } else if (after == UnitState::Failed) {
+        ++report.units_failed;
+      }
+    }
+    stop_rank = kind == kStopped;  // a rank that was stopped leaves
+    std::optional<UnitRecord> next;
+    if (!stop_rank && stopSignal() == 0 && (opt.max_units == 0 || handed < opt.max_units))
+      next = state.claim(rank, nowSeconds());
+    if (next) {
+      ++handed;
+      ++report.units_run;
+      sendWork(rank, next->order);
+    } else {
+      sendWork(rank, -1);
+      --active;
+    }
+  }
+  bar.finish();
+  c = state.counts();
+  report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
+  report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
+  report.wall_s = steadySeconds() - t0;
+  report.workers = ranks - 1;
+  return report;
+}
+
+BuildReport work(const BuildFolder& folder) {
+  BuildReport report;
+  const double t0 = steadySeconds();
+  sendReport(kHello, -1, 0.0, "");
+  while (true) {
+    const int64_t order = receiveWork();
+    if (order < 0) break;
+    const WorkUnit& unit = folder.unit(order);
+    const UnitResult r = runUnitCaught(folder, unit);
+    ++report.units_run;
+    report.unit_s += r.seconds;
+    if (r.kind == UnitResult::Kind::Done) ++report.units_done, report.frames += unit.frames;
+    const int64_t kind = r.kind == UnitResult::Kind::Done     ? kDone
+                         : r.kind == UnitResult::Kind::Failed ? kFailed
+                                                              : kStopped;
+    sendReport(kind, order, r.seconds, r.text);
+  }
+  report.wall_s = steadySeconds() - t0;
+  return report;
+}
+
+/// MPI_Init/MPI_Finalize around the build, finalising on the way out of an exception too.
+struct MpiSession {
+  MpiSession() {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  }
+  ~MpiSession() { MPI_Finalize(); }
+};
+
+}  // namespace
+
+bool launchedByMpi() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr;
+}
+
+BuildReport buildMpi(const std::filesystem::path& root, const BuildOptions& opt, int* rank_out,
+                     int* ranks_out) {
+  MpiSession session;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (rank_out) *rank_out = rank;
+  if (ranks_out) *ranks_out = ranks;
+  // a bad folder is found by every rank alike (each reads the plan), so all fail together
+  BuildFolder folder(root, rank == 0);
+  BuildReport report;
+  if (ranks == 1) {
+    report = buildLocal(folder, opt);
+  } else if (rank == 0) {
+    report = coordinate(folder, opt, ranks);
+  } else {
+    report = work(folder);
+  }
+  stopIfSignalled(fmt::format("(rank {} of {})", rank, ranks));
+  return report;
+}
+
+}  // namespace inet
