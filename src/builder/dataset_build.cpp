@@ -87,6 +87,7 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
     }
   }
   bar.finish();
+  writeManifestIfComplete(folder);
   c = state.counts();
   report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
   report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
@@ -94,11 +95,32 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
   return report;
 }
 
+namespace {
+
+/// The unit's position in the plan (`unit` is one of folder.units()).
+int64_t unitOrder(const BuildFolder& folder, const WorkUnit& unit) {
+  const int64_t order = static_cast<int64_t>(&unit - folder.units().data());
+  INET_CHECK(order >= 0 && order < static_cast<int64_t>(folder.units().size()));
+  return order;
+}
+
+}  // namespace
+
+bool writeManifestIfComplete(const BuildFolder& folder) {
+  const StateCounts c = folder.state().counts();
+  if (c.units[static_cast<int>(UnitState::Done)] != c.total()) return false;
+  std::string all;
+  for (size_t k = 0; k < folder.units().size(); ++k)
+    all += readTextFile(unitManifestPath(folder.root(), static_cast<int64_t>(k)));
+  writeTextAtomic(folder.root() / "manifest.jsonl", all);
+  return true;
+}
+
 UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
   UnitResult r;
   const double t0 = steadySeconds();
   try {
-    r.text = runUnit(folder.plan(), unit, folder.root()).checksums;
+    r.text = runUnit(folder.plan(), unit, unitOrder(folder, unit), folder.root()).checksums;
     r.kind = UnitResult::Kind::Done;
   } catch (const StopRequested& e) {
     r.kind = UnitResult::Kind::Stopped;

@@ -74,6 +74,10 @@ UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit);
 UnitState recordResult(BuildFolder& folder, const WorkUnit& unit, int rank,
                        const UnitResult& result, const BuildOptions& opt);
 
+/// When every unit is done: joins the units' manifest rows (unit_runner.h) in plan order into
+/// manifest.jsonl (atomically). Returns whether it wrote it.
+bool writeManifestIfComplete(const BuildFolder& folder);
+
 /// `dataset status`: units and frames per state, frames/s overall and per rank, ETA, the last
 /// errors. As text for the terminal, or as JSON.
 std::string statusText(const BuildFolder& folder);

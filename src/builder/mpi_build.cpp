@@ -139,6 +139,7 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
     }
   }
   bar.finish();
+  writeManifestIfComplete(folder);
   c = state.counts();
   report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
   report.failed_total = c.units[static_cast<int>(UnitState::Failed)];

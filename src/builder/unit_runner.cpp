@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace inet {
@@ -142,13 +143,62 @@ std::string fileChecksum(const fs::path& file) {
   return fmt::format("{:08x}:{}", static_cast<uint32_t>(crc), size);
 }
 
-UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, const fs::path& root) {
+fs::path unitManifestPath(const fs::path& root, int64_t order) {
+  return root / "manifest" / "units" / fmt::format("{:08d}.jsonl", order);
+}
+
+namespace {
+
+/// The manifest key of a frame file at `rel` (relative to its sequence folder).
+std::string passKey(const fs::path& rel) {
+  std::string key = rel.begin()->string();
+  const std::string stem = rel.stem().string();
+  const size_t us = stem.rfind('_');
+  if (us != std::string::npos) key += stem.substr(us);
+  if (rel.extension() != ".png") key += rel.extension().string();
+  return key;
+}
+
+}  // namespace
+
+UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
+                   const fs::path& root) {
   const fs::path data = root / "data";
   std::map<std::string, std::string> sums;  // ordered: the same text for the same files
   UnitOutput out;
-  for (const SequenceJob& job : jobsOf(plan, unit, data)) {
+  std::string manifest;
+  const std::vector<SequenceJob> jobs = jobsOf(plan, unit, data);
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const SequenceJob& job = jobs[j];
     const SequenceJobResult r = runSequenceJob(job);
+    const PlannedLayout& layout = plan.layouts.at(static_cast<size_t>(unit.layout) + j);
+    const PlannedSequence* planned =
+        unit.kind == UnitKind::Sequence
+            ? &layout.sequences.at(static_cast<size_t>(unit.sequence))
+            : nullptr;
     for (const auto& seq : r.sequences) {
+      for (const auto& frame : seq.range) {
+        nlohmann::ordered_json row;
+        row["split"] = splitName(layout.split);
+        row["subset"] = layout.subset;
+        row["layout"] = layout.id;
+        row["configuration"] = seq.configuration;
+        row["sequence"] = job.sequence;
+        row["folder"] = fs::path(seq.dir).lexically_relative(root).generic_string();
+        row["trajectory"] = planned ? planned->trajectory : std::string("two-body");
+        if (planned) {
+          row["v_mult"] = planned->v_mult;
+          row["w_mult"] = planned->w_mult;
+        }
+        row["frame"] = frame.index;
+        row["t_ns"] = frame.t_ns;
+        nlohmann::ordered_json files = nlohmann::ordered_json::object();
+        for (const std::string& f : frame.files)
+          files[passKey(fs::path(f).lexically_relative(seq.dir))] =
+              fs::path(f).lexically_relative(root).generic_string();
+        row["files"] = std::move(files);
+        manifest += row.dump() + "\n";
+      }
       out.finished_sequence |= seq.finished && unit.kind == UnitKind::Sequence;
       for (const std::string& f : seq.files) {
         const std::string rel = fs::path(f).lexically_relative(root).generic_string();
@@ -157,6 +207,9 @@ UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, const fs::path
       }
     }
   }
+  const fs::path rows = unitManifestPath(root, order);
+  writeTextAtomic(rows, manifest);
+  sums[rows.lexically_relative(root).generic_string()] = fileChecksum(rows);
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [path, sum] : sums) j[path] = sum;
   out.checksums = j.dump();

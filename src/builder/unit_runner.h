@@ -30,6 +30,15 @@ std::filesystem::path layoutFolder(const PlannedLayout& layout);
 std::vector<SequenceJob> jobsOf(const DatasetPlan& plan, const WorkUnit& unit,
                                 const std::filesystem::path& data);
 
+/// The manifest rows of a unit: one JSON object per line, per frame (sparse: per view), in
+/// frame order: split, subset, layout, configuration, sequence, folder, trajectory, v_mult,
+/// w_mult, frame, t_ns and files {pass key: path relative to the build folder}. A pass key is
+/// the file's folder in the sequence (cam0, depth0, rgb, ...), with the name's suffix after
+/// '_' (label0_nyu, label0_instance) and the extension when it is not .png (cam0.exr, flow0.flo).
+/// Written by runUnit to manifest/units/<order, 8 digits>.jsonl; `dataset build` joins them
+/// into manifest.jsonl in plan order when every unit is done.
+std::filesystem::path unitManifestPath(const std::filesystem::path& root, int64_t order);
+
 /// What a unit wrote: its files (relative to the build folder) with their checksums.
 struct UnitOutput {
   /// JSON object {"relative/path": "crc32:size"} in path order: what `dataset verify` checks.
@@ -39,9 +48,10 @@ struct UnitOutput {
   bool finished_sequence = false;  ///< it also wrote its sequence's index files
 };
 
-/// Runs every job of `unit` into `root`/data (resumable: what is done is skipped) and returns
-/// the checksums of the files it is answerable for. Throws what runSequenceJob throws.
-UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit,
+/// Runs every job of `unit` (the plan's unit number `order`) into `root`/data (resumable: what
+/// is done is skipped), writes its manifest rows, and returns the checksums of the files it is
+/// answerable for, its manifest file included. Throws what runSequenceJob throws.
+UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
                    const std::filesystem::path& root);
 
 /// "crc32:size" of a file (zlib's CRC-32, lower-case hex, 8 digits); InputError if unreadable.

@@ -601,6 +601,7 @@ SequenceJobResult::Sequence renderSequence(
                  last - 1);
   SequenceJobResult::Sequence result;
   result.dir = dir.string();
+  result.configuration = c.describe();
   result.frames = traj.size();
   result.skipped = skipped;
 
@@ -741,8 +742,17 @@ SequenceJobResult::Sequence renderSequence(
       visible[k] = instanceVisibility(frame.instance);
     }
   }
-  for (size_t k = first; k < last; ++k)
-    for (const fs::path& f : writer.frameFiles(k)) result.files.push_back(f.string());
+  for (size_t k = first; k < last; ++k) {
+    SequenceJobResult::Sequence::Frame fr;
+    fr.index = k;
+    fr.t_ns = traj.poses[k].t_ns;
+    for (const fs::path& f : writer.frameFiles(k)) {
+      result.files.push_back(f.string());
+      fr.files.push_back(f.string());
+    }
+    std::sort(fr.files.begin(), fr.files.end());
+    result.range.push_back(std::move(fr));
+  }
   if (!finishing) {
     std::sort(result.files.begin(), result.files.end());
     std::printf("wrote frames %zu..%zu of %zu to %s\n", first, last - 1, traj.size(),

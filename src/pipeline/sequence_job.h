@@ -81,6 +81,7 @@ struct SequenceJob {
 struct SequenceJobResult {
   struct Sequence {
     std::string dir;        ///< the sequence folder
+    std::string configuration;  ///< original, lighting:N or rearranged:N
     size_t frames = 0;      ///< frames of the whole sequence
     size_t rendered = 0;    ///< frames this job rendered
     size_t skipped = 0;     ///< frames of the range already complete
@@ -88,6 +89,13 @@ struct SequenceJobResult {
     /// The files this job is answerable for: every file of the range's frames, and when it
     /// finished the sequence, every file of the folder. Sorted.
     std::vector<std::string> files;
+    /// Every frame of the job's range (rendered now or before): its index, timestamp and files.
+    struct Frame {
+      size_t index = 0;
+      int64_t t_ns = 0;
+      std::vector<std::string> files;
+    };
+    std::vector<Frame> range;
   };
   std::vector<Sequence> sequences;
 };

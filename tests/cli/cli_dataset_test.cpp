@@ -13,8 +13,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_util.h"
 #include "core/atomic_file.h"
@@ -155,6 +158,28 @@ TEST_F(CliDataset, PlanBuildStatusAndVerify) {
   EXPECT_EQ(sparse, 6u);
   EXPECT_EQ(boxes, 8u);
   EXPECT_EQ(imu, 2u);
+  // the manifest: one row per frame and sparse view, in plan order, naming existing files
+  ASSERT_TRUE(reference_->count("manifest.jsonl"));
+  std::istringstream rows(reference_->at("manifest.jsonl"));
+  std::string line;
+  size_t n = 0, sparse_rows = 0;
+  while (std::getline(rows, line)) {
+    const nlohmann::json row = nlohmann::json::parse(line);
+    ++n;
+    sparse_rows += row["sequence"] == "sparse";
+    for (const char* key : {"split", "subset", "layout", "configuration", "folder", "t_ns"})
+      EXPECT_TRUE(row.contains(key)) << line;
+    EXPECT_EQ(row["folder"].get<std::string>().rfind("data/" + row["split"].get<std::string>() +
+                                                         "/" + row["subset"].get<std::string>(),
+                                                     0),
+              0u)
+        << line;
+    ASSERT_TRUE(row["files"].contains("cam0")) << line;
+    for (const auto& [pass, path] : row["files"].items())
+      EXPECT_TRUE(reference_->count(path.get<std::string>())) << pass << " " << path;
+  }
+  EXPECT_EQ(n, 14u);
+  EXPECT_EQ(sparse_rows, 6u);
   // data/<split>/<subset>/<layout>/...
   for (const auto& [name, bytes] : *reference_) {
     if (name.rfind("data/", 0) != 0) continue;
