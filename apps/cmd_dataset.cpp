@@ -74,6 +74,21 @@ void runBuild(const BuildArgs& a) {
              r.units_run, r.wall_s, r.unit_s, r.workers,
              worker_s > 0 ? 100.0 * std::max(0.0, worker_s - r.unit_s) / worker_s : 0.0,
              r.units_done, r.frames);
+  if (r.unit_s > 0)
+    fmt::print("in units: {:.1f} s setting up (scene, trajectory), {:.1f} s rendering and writing "
+               "frames, {:.1f} s other (checksums, manifest)\n",
+               r.setup_s, r.sequences_s, std::max(0.0, r.unit_s - r.setup_s - r.sequences_s));
+  for (const auto& [rank, rss] : r.rss_kb) {
+    if (rss.empty()) continue;
+    // after the first unit, a tenth, half and all of them: flat once the caches are warm
+    const size_t n = rss.size();
+    fmt::print("rank {} resident memory after unit 1: {:.0f} MB, {}: {:.0f} MB, {}: {:.0f} MB, "
+               "{}: {:.0f} MB; highest {:.0f} MB\n",
+               rank, rss.front() / 1024.0, std::max<size_t>(1, n / 10),
+               rss[std::max<size_t>(1, n / 10) - 1] / 1024.0, std::max<size_t>(1, n / 2),
+               rss[std::max<size_t>(1, n / 2) - 1] / 1024.0, n, rss.back() / 1024.0,
+               *std::max_element(rss.begin(), rss.end()) / 1024.0);
+  }
   if (r.failed_total > 0)
     throw InputError(a.dir, "units",
                      fmt::format("{} unit(s) failed {} time(s) each; `interiornet dataset status "

@@ -162,9 +162,11 @@ void BuildState::sync(const std::vector<std::pair<std::string, int64_t>>& ids_an
   }
 }
 
-int64_t BuildState::resetRunning() {
+std::vector<int64_t> BuildState::resetRunning() {
+  std::vector<int64_t> orders;
+  for (const UnitRecord& r : units(UnitState::Running)) orders.push_back(r.order);
   exec("UPDATE units SET state = 0, rank = -1, started = 0 WHERE state = 1");
-  return sqlite3_changes(db_);
+  return orders;
 }
 
 int64_t BuildState::retryFailed(int max_attempts) {

@@ -53,8 +53,8 @@ class BuildState {
   /// otherwise: a build folder belongs to one plan).
   void sync(const std::vector<std::pair<std::string, int64_t>>& ids_and_frames,
             const std::string& plan_checksum);
-  /// Units a killed job left running become pending again; returns how many.
-  int64_t resetRunning();
+  /// Units a killed job left running become pending again; returns their orders.
+  std::vector<int64_t> resetRunning();
   /// Failed units with fewer than `max_attempts` attempts become pending again; returns how many.
   int64_t retryFailed(int max_attempts);
   /// The first pending unit in order, marked running on `rank`; none when nothing is pending.

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -48,17 +51,41 @@ BuildFolder::BuildFolder(const fs::path& root, bool with_state) : root_(root) {
   state_->sync(rows, specChecksum(readTextFile(plan_file)));
 }
 
+void prepareResume(BuildFolder& folder, const BuildOptions& opt) {
+  BuildState& state = folder.state();
+  const std::vector<int64_t> again = state.resetRunning();
+  // nothing runs now: a temporary file in a folder of those units is a killed write
+  std::set<fs::path> folders;
+  for (const int64_t order : again) {
+    const WorkUnit& u = folder.unit(order);
+    for (int i = 0; i < u.layout_count; ++i)
+      folders.insert(folder.root() / "data" /
+                     layoutFolder(folder.plan().layouts.at(static_cast<size_t>(u.layout + i))));
+  }
+  if (!again.empty()) folders.insert(folder.root() / "manifest");
+  size_t removed = 0;
+  for (const fs::path& dir : folders) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+      if (e.is_regular_file(ec) && isTemporaryName(e.path().filename().string()))
+        removed += fs::remove(e.path(), ec);
+  }
+  if (!again.empty())
+    std::fprintf(stderr,
+                 "resuming: %zu unit(s) a stopped build left running run again (%zu "
+                 "half-written file(s) removed)\n",
+                 again.size(), removed);
+  const int64_t retried = state.retryFailed(opt.max_attempts);
+  if (retried > 0)
+    std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+}
+
 BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
   BuildState& state = folder.state();
   BuildReport report;
   const double t0 = steadySeconds();
-  const int64_t again = state.resetRunning();
-  const int64_t retried = state.retryFailed(opt.max_attempts);
-  if (again > 0)
-    std::fprintf(stderr, "resuming: %lld unit(s) a stopped build left running run again\n",
-                 static_cast<long long>(again));
-  if (retried > 0)
-    std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+  prepareResume(folder, opt);
   StateCounts c = state.counts();
   const int64_t total_frames = c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3];
   int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
@@ -72,6 +99,9 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
     ++report.units_run;
     const UnitResult result = runUnitCaught(folder, unit);
     report.unit_s += result.seconds;
+    report.setup_s += result.setup_s;
+    report.sequences_s += result.sequences_s;
+    report.rss_kb[0].push_back(result.rss_kb);
     const UnitState after = recordResult(folder, unit, 0, result, opt);
     if (result.kind == UnitResult::Kind::Stopped) {
       bar.finish();
@@ -97,6 +127,15 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
 
 namespace {
 
+/// VmRSS of this process from /proc/self/status, in kB (0 where there is none).
+int64_t residentKb() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::atoll(line.c_str() + 6);
+  return 0;
+}
+
 /// The unit's position in the plan (`unit` is one of folder.units()).
 int64_t unitOrder(const BuildFolder& folder, const WorkUnit& unit) {
   const int64_t order = static_cast<int64_t>(&unit - folder.units().data());
@@ -120,7 +159,10 @@ UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
   UnitResult r;
   const double t0 = steadySeconds();
   try {
-    r.text = runUnit(folder.plan(), unit, unitOrder(folder, unit), folder.root()).checksums;
+    const UnitOutput out = runUnit(folder.plan(), unit, unitOrder(folder, unit), folder.root());
+    r.text = out.checksums;
+    r.setup_s = out.setup_s;
+    r.sequences_s = out.sequences_s;
     r.kind = UnitResult::Kind::Done;
   } catch (const StopRequested& e) {
     r.kind = UnitResult::Kind::Stopped;
@@ -130,6 +172,7 @@ UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
     r.text = e.what();
   }
   r.seconds = steadySeconds() - t0;
+  r.rss_kb = residentKb();
   return r;
 }
 

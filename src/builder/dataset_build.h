@@ -9,6 +9,8 @@
 // interruptions, the thread count or (with MPI) the rank count.
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,10 @@ struct BuildReport {
   double wall_s = 0.0;         ///< wall time of the build
   double unit_s = 0.0;         ///< wall time inside units, summed over the workers
   int workers = 1;             ///< ranks that ran units (the rest of their time is overhead)
+  double setup_s = 0.0;        ///< of unit_s: the pipeline before the first frame
+  double sequences_s = 0.0;    ///< of unit_s: the pipeline rendering and writing frames
+  /// Per rank that ran units: its resident memory after each of them, in the order run.
+  std::map<int, std::vector<int64_t>> rss_kb;
   int64_t pending_after = 0;   ///< units still pending (max_units, or failures to retry)
   int64_t failed_total = 0;    ///< units failed for good, over the whole state
 };
@@ -55,6 +61,12 @@ class BuildFolder {
   std::unique_ptr<BuildState> state_;
 };
 
+/// Before any unit runs: units a killed build left running are pending again, and the
+/// temporary files they may have left half-written (in their layouts' folders and among the
+/// unit manifests) are removed, so a resumed build leaves no partial file. Failed units with
+/// attempts left are pending again. Says what it did on stderr.
+void prepareResume(BuildFolder& folder, const BuildOptions& opt);
+
 /// Runs every pending unit of the build folder in this process (TBB threads inside each unit),
 /// in plan order. Units a killed job left running are pending again first. A SIGTERM or SIGINT
 /// (core/stop.h) stops after the unit in flight reaches a safe point: that unit goes back to
@@ -65,6 +77,8 @@ BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt);
 struct UnitResult {
   enum class Kind { Done, Failed, Stopped } kind = Kind::Done;
   double seconds = 0.0;
+  double setup_s = 0.0, sequences_s = 0.0;  ///< of seconds: UnitOutput's
+  int64_t rss_kb = 0;  ///< the rank's resident memory after the unit (VmRSS)
   std::string text;  ///< Done: the checksums; Failed: the error; Stopped: the message
 };
 /// Runs one unit and says how it went (never throws, but for a bug).

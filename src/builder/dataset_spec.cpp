@@ -456,6 +456,18 @@ DatasetSpec parseRoot(const Reader& r, const YAML::Node& root, const fs::path& b
     if (s.formats.empty()) r.fail(x, "no format given (asl, tum)");
   });
   with(m, "storage", [&](const Value& x) { s.storage = parseStorage(r, x); });
+  // what the sequence writer would refuse in every unit of the build, said once here: TUM
+  // folders pair colour with depth images
+  auto has = [&](const char* pass) {
+    for (const std::string& p : s.passes)
+      if (p == pass || p == "default" || p == "all") return true;
+    return false;
+  };
+  if (std::find(s.formats.begin(), s.formats.end(), "tum") != s.formats.end() &&
+      (!has("rgb") || !has("depth")))
+    r.fail(m.count("formats") ? m.at("formats") : m.at("passes"),
+           "format 'tum' (a default) needs the rgb and depth passes: add them, or say "
+           "formats: [asl]");
   return s;
 }
 

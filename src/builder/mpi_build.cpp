@@ -33,18 +33,18 @@ double nowSeconds() {
   return duration<double>(system_clock::now().time_since_epoch()).count();
 }
 
-/// A report as bytes: kind, unit order, seconds (as bits), then the text.
-std::vector<char> pack(int64_t kind, int64_t order, double seconds, const std::string& text) {
-  std::vector<char> buf(3 * sizeof(int64_t) + text.size());
-  std::memcpy(buf.data(), &kind, sizeof kind);
-  std::memcpy(buf.data() + 8, &order, sizeof order);
-  std::memcpy(buf.data() + 16, &seconds, sizeof seconds);
-  std::memcpy(buf.data() + 24, text.data(), text.size());
-  return buf;
-}
+/// A report's fixed part; the text (checksums or error) follows it in the message.
+struct ReportHeader {
+  int64_t kind = kHello;
+  int64_t order = -1;
+  double seconds = 0.0, setup_s = 0.0, sequences_s = 0.0;
+  int64_t rss_kb = 0;
+};
 
-void sendReport(int64_t kind, int64_t order, double seconds, const std::string& text) {
-  const std::vector<char> buf = pack(kind, order, seconds, text);
+void sendReport(const ReportHeader& h, const std::string& text) {
+  std::vector<char> buf(sizeof h + text.size());
+  std::memcpy(buf.data(), &h, sizeof h);
+  std::memcpy(buf.data() + sizeof h, text.data(), text.size());
   MPI_Send(buf.data(), static_cast<int>(buf.size()), MPI_BYTE, 0, kTagReport, MPI_COMM_WORLD);
 }
 
@@ -71,13 +71,7 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
   BuildState& state = folder.state();
   BuildReport report;
   const double t0 = steadySeconds();
-  const int64_t again = state.resetRunning();
-  const int64_t retried = state.retryFailed(opt.max_attempts);
-  if (again > 0)
-    std::fprintf(stderr, "resuming: %lld unit(s) a stopped build left running run again\n",
-                 static_cast<long long>(again));
-  if (retried > 0)
-    std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+  prepareResume(folder, opt);  // the workers wait for their first unit meanwhile
   StateCounts c = state.counts();
   int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
   ProgressBar bar(c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3], "frames",
@@ -96,14 +90,12 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
     }
     int bytes = 0;
     MPI_Get_count(&st, MPI_BYTE, &bytes);
-    buf.resize(static_cast<size_t>(std::max(bytes, 24)));
+    ReportHeader h;
+    buf.resize(std::max(static_cast<size_t>(bytes), sizeof h));
     MPI_Recv(buf.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kTagReport, MPI_COMM_WORLD,
              MPI_STATUS_IGNORE);
-    int64_t kind = 0, order = -1;
-    double seconds = 0.0;
-    std::memcpy(&kind, buf.data(), 8);
-    std::memcpy(&order, buf.data() + 8, 8);
-    std::memcpy(&seconds, buf.data() + 16, 8);
+    std::memcpy(&h, buf.data(), sizeof h);
+    const int64_t kind = h.kind, order = h.order;
     const int rank = st.MPI_SOURCE;
     bool stop_rank = false;
     if (kind != kHello && order >= 0) {
@@ -112,9 +104,12 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
       r.kind = kind == kDone     ? UnitResult::Kind::Done
                : kind == kFailed ? UnitResult::Kind::Failed
                                  : UnitResult::Kind::Stopped;
-      r.seconds = seconds;
-      r.text.assign(buf.data() + 24, static_cast<size_t>(bytes - 24));
-      report.unit_s += seconds;
+      r.seconds = h.seconds;
+      r.text.assign(buf.data() + sizeof h, static_cast<size_t>(bytes) - sizeof h);
+      report.unit_s += h.seconds;
+      report.setup_s += h.setup_s;
+      report.sequences_s += h.sequences_s;
+      report.rss_kb[rank].push_back(h.rss_kb);
       const UnitState after = recordResult(folder, unit, rank, r, opt);
       if (after == UnitState::Done) {
         ++report.units_done;
@@ -151,7 +146,7 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
 BuildReport work(const BuildFolder& folder) {
   BuildReport report;
   const double t0 = steadySeconds();
-  sendReport(kHello, -1, 0.0, "");
+  sendReport(ReportHeader{}, "");
   while (true) {
     const int64_t order = receiveWork();
     if (order < 0) break;
@@ -160,10 +155,16 @@ BuildReport work(const BuildFolder& folder) {
     ++report.units_run;
     report.unit_s += r.seconds;
     if (r.kind == UnitResult::Kind::Done) ++report.units_done, report.frames += unit.frames;
-    const int64_t kind = r.kind == UnitResult::Kind::Done     ? kDone
-                         : r.kind == UnitResult::Kind::Failed ? kFailed
-                                                              : kStopped;
-    sendReport(kind, order, r.seconds, r.text);
+    ReportHeader h;
+    h.kind = r.kind == UnitResult::Kind::Done     ? kDone
+             : r.kind == UnitResult::Kind::Failed ? kFailed
+                                                  : kStopped;
+    h.order = order;
+    h.seconds = r.seconds;
+    h.setup_s = r.setup_s;
+    h.sequences_s = r.sequences_s;
+    h.rss_kb = r.rss_kb;
+    sendReport(h, r.text);
   }
   report.wall_s = steadySeconds() - t0;
   return report;

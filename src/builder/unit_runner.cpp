@@ -171,6 +171,8 @@ UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
   for (size_t j = 0; j < jobs.size(); ++j) {
     const SequenceJob& job = jobs[j];
     const SequenceJobResult r = runSequenceJob(job);
+    out.setup_s += r.setup_s;
+    out.sequences_s += r.sequences_s;
     const PlannedLayout& layout = plan.layouts.at(static_cast<size_t>(unit.layout) + j);
     const PlannedSequence* planned =
         unit.kind == UnitKind::Sequence

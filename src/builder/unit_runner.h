@@ -46,6 +46,8 @@ struct UnitOutput {
   int64_t files = 0;
   int64_t bytes = 0;
   bool finished_sequence = false;  ///< it also wrote its sequence's index files
+  double setup_s = 0.0;      ///< in the pipeline before the first frame (scene, trajectory)
+  double sequences_s = 0.0;  ///< in the pipeline rendering and writing frames
 };
 
 /// Runs every job of `unit` (the plan's unit number `order`) into `root`/data (resumable: what

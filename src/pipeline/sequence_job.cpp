@@ -3,11 +3,14 @@
 #include "pipeline/sequence_job.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -786,9 +789,94 @@ SequenceJobResult::Sequence renderSequence(
   return result;
 }
 
+/// What a job loads before its first frame: the scene, the camera path, every configuration's
+/// scene, the IMU and the event camera's spline.
+struct Prepared {
+  std::string key;
+  Scene scene;
+  CameraPath cam;
+  std::vector<SceneConfig> configs;
+  ImuOptions imu;
+  std::optional<ImuSequence> imu_seq;
+  std::optional<PoseSpline> spline;
+};
+
+/// Everything of a job that what Prepared holds depends on (a file by its size and time too).
+std::string preparedKey(const SequenceJob& a) {
+  nlohmann::json k;
+  auto file = [](const std::string& path) {
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    const auto time = fs::last_write_time(path, ec).time_since_epoch().count();
+    return ec ? path : fmt::format("{} {} {}", path, size, time);
+  };
+  k["scene"] = {file(a.scene.path),        a.scene.up,           a.scene.scale,
+                file(a.scene.labels),      file(a.scene.lights), a.scene.auto_lights,
+                a.scene.default_apartment, a.scene.rooms,        a.scene.furniture};
+  k["trajectory"] = {file(a.trajectory),
+                     a.motion.v_mult,
+                     a.motion.w_mult,
+                     a.motion.clearance,
+                     a.motion.min_height,
+                     a.motion.max_height,
+                     a.motion.style,
+                     a.place_trajectory,
+                     a.frames,
+                     a.frames_set,
+                     a.fps,
+                     a.seed};
+  k["sensors"] = {a.passes, a.imu_rate, a.imu_noise, a.config, a.lens.lens, a.readout_ms};
+  return k.dump();
+}
+
+/// The last job's Prepared, for the next job of the same sequence in this process.
+std::mutex g_prepared_mutex;
+std::shared_ptr<const Prepared> g_prepared;
+
+std::shared_ptr<const Prepared> preparedFor(const SequenceJob& a, const SequencePasses& want) {
+  const std::string key = preparedKey(a);
+  {
+    std::lock_guard<std::mutex> lock(g_prepared_mutex);
+    if (g_prepared && g_prepared->key == key) return g_prepared;
+    g_prepared.reset();  // one at a time: a scene may take hundreds of MB
+  }
+  auto p = std::make_shared<Prepared>();
+  p->key = key;
+  p->configs = parseConfigs(a.config);
+  p->scene = a.scene.load();
+  p->cam = loadTrajectory(a, p->scene);
+  const CameraPath& cam = p->cam;
+  // the IMU and the event camera's path from the camera's continuous path, made before
+  // anything is written, so that a path too short for a spline fails cleanly
+  // for random trajectories the spline has knots at the 200 Hz samples, through which it passes
+  // exactly; for a file, the default spacing (the input's mean, at least 50 ms)
+  SplineFitOptions fit;
+  if (cam.path.size() > cam.frames.size())
+    fit.knot_spacing_ns = cam.path.poses[1].t_ns - cam.path.poses[0].t_ns;
+  if (want.events) p->spline = PoseSpline::fit(cam.path, fit, nullptr, cam.description);
+  if (want.imu && a.imu_rate > 0) {
+    p->imu.rate_hz = a.imu_rate;
+    p->imu.noise = imuNoiseFromArg(a.imu_noise, "--imu-noise");
+    p->imu.seed = a.seed;
+    try {
+      p->imu_seq = simulateImu(cam.path, p->imu, fit, nullptr, nullptr, cam.description);
+    } catch (const InputError& e) {
+      // 'default' and 'all' leave the IMU out of sequences too short for a spline (a few
+      // frames); asked for by name, that is an error
+      if (want.imu_by_name || e.field() != "trajectory") throw;
+    }
+  }
+  // every configuration's scene before the first file: the same trajectory goes through each
+  for (SceneConfig& c : p->configs) c.scene = variantOf(p->scene, c);
+  std::lock_guard<std::mutex> lock(g_prepared_mutex);
+  g_prepared = p;
+  return p;
+}
+
 }  // namespace
 
 SequenceJobResult runSequenceJob(const SequenceJob& a) {
+  const auto t0 = std::chrono::steady_clock::now();
   validateArgs(a);
   a.response.validate();
   const LensType lens_type = a.lens.type();
@@ -800,41 +888,22 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   if (a.hdr && !has(passes, Pass::Rgb)) throw InputError("", "--hdr", "needs the rgb pass");
   if (!(a.stereo >= 0 && a.stereo <= 10))
     throw InputError("", "--stereo", "the baseline must be in 0..10 m");
-  const bool want_imu = want.imu && a.imu_rate > 0;
   const EventCameraOptions event_opt = a.events.options(a.seed);
-  std::vector<SceneConfig> configs = parseConfigs(a.config);
   const KinectNoiseOptions depth_noise;
   std::vector<std::string> formats = splitList(a.formats);
-  // Load and check every input before anything is written.
-  Scene scene = a.scene.load();
-  const CameraPath cam = loadTrajectory(a, scene);
+  // Load and check every input before anything is written; consecutive jobs of one sequence
+  // (the dataset builder's frame ranges) share what they load
+  std::shared_ptr<const Prepared> prepared = preparedFor(a, want);
+  const Scene& scene = prepared->scene;
+  const CameraPath& cam = prepared->cam;
+  const ImuOptions& imu = prepared->imu;
+  const std::optional<ImuSequence>& imu_seq = prepared->imu_seq;
+  const std::optional<PoseSpline>& spline = prepared->spline;
+  const std::vector<SceneConfig>& configs = prepared->configs;
   if (a.frame_begin >= cam.frames.size())
     throw InputError(cam.description, "frame range",
                      fmt::format("starts at frame {} but the camera path has {} frames",
                                  a.frame_begin, cam.frames.size()));
-  // the IMU and the event camera's path from the camera's continuous path, made before anything
-  // is written, so that a path too short for a spline fails cleanly
-  ImuOptions imu;
-  std::optional<ImuSequence> imu_seq;
-  // for random trajectories the spline has knots at the 200 Hz samples, through which it passes
-  // exactly; for a file, the default spacing (the input's mean, at least 50 ms)
-  SplineFitOptions fit;
-  if (cam.path.size() > cam.frames.size())
-    fit.knot_spacing_ns = cam.path.poses[1].t_ns - cam.path.poses[0].t_ns;
-  std::optional<PoseSpline> spline;  // the event camera's path: the IMU's spline
-  if (want.events) spline = PoseSpline::fit(cam.path, fit, nullptr, cam.description);
-  if (want_imu) {
-    imu.rate_hz = a.imu_rate;
-    imu.noise = imuNoiseFromArg(a.imu_noise, "--imu-noise");
-    imu.seed = a.seed;
-    try {
-      imu_seq = simulateImu(cam.path, imu, fit, nullptr, nullptr, cam.description);
-    } catch (const InputError& e) {
-      // 'default' and 'all' leave the IMU out of sequences too short for a spline (a few
-      // frames); asked for by name, that is an error
-      if (want.imu_by_name || e.field() != "trajectory") throw;
-    }
-  }
   RenderOptions opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
@@ -843,17 +912,18 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   opt.denoise = a.denoise;
   opt.light_cache = a.light_cache;
   opt.sun_photons = a.sun_photons;
-  // every configuration's scene before the first file: the same trajectory goes through each
-  for (SceneConfig& c : configs) c.scene = variantOf(scene, c);
   stopIfSignalled("before the first frame");
   SequenceJobResult result;
+  const auto t1 = std::chrono::steady_clock::now();
+  result.setup_s = std::chrono::duration<double>(t1 - t0).count();
   for (const SceneConfig& c : configs)
     result.sequences.push_back(renderSequence(a, c, cam, lens, lens_type, want, passes, opt, imu,
                                               imu_seq, spline, event_opt, depth_noise, formats));
+  result.sequences_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if (!a.contact_sheet.empty() && result.sequences.front().finished)
-    writeSequenceSheet(fs::path(a.out) / layoutFolder(a, scene) /
-                           (a.sequence + configs.front().suffix()),
-                       a.contact_sheet);
+    writeSequenceSheet(
+        fs::path(a.out) / layoutFolder(a, scene) / (a.sequence + configs.front().suffix()),
+        a.contact_sheet);
   return result;
 }
 

@@ -98,6 +98,9 @@ struct SequenceJobResult {
     std::vector<Frame> range;
   };
   std::vector<Sequence> sequences;
+  /// Wall time before the first frame (scene, trajectory, configurations, IMU) and in the
+  /// sequences (frames, then the sequence-level files), in seconds.
+  double setup_s = 0.0, sequences_s = 0.0;
 };
 
 /// Runs `job` (see above). Throws InputError for bad input, before anything is written where it

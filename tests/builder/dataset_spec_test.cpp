@@ -255,6 +255,13 @@ TEST(DatasetSpec, PassesAndFormats) {
   EXPECT_EQ(errorOf(kMinimal + "passes: [rgb, rgb]\n").field(), "passes[1] (line 4)");
   EXPECT_EQ(errorOf(kMinimal + "formats: [asl, kitti]\n").field(), "formats[1] (line 4)");
   EXPECT_EQ(errorOf(kMinimal + "formats: []\n").field(), "formats (line 4)");
+  // TUM folders need colour and z-depth: said at the spec, not in every unit of a build
+  InputError tum = errorOf(kMinimal + "passes: [depth, label]\n");
+  EXPECT_EQ(tum.field(), "passes (line 4)");
+  EXPECT_NE(tum.problem().find("format 'tum'"), std::string::npos) << tum.what();
+  EXPECT_EQ(errorOf(kMinimal + "passes: [rgb, label]\nformats: [tum]\n").field(),
+            "formats (line 5)");
+  EXPECT_EQ(parse(kMinimal + "passes: [depth, label]\nformats: [asl]\n").formats.size(), 1u);
 }
 
 TEST(DatasetSpec, JsonSpecReadsAsItsYaml) {
