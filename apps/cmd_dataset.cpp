@@ -106,7 +106,7 @@ struct VerifyArgs {
 };
 
 void runVerify(const VerifyArgs& a) {
-  BuildFolder folder(a.dir);
+  const BuildFolder folder(a.dir, StateAccess::Read);
   const VerifyReport v = verifyBuild(folder);
   for (const std::string& p : v.problems) std::fprintf(stderr, "%s\n", p.c_str());
   if (!v.problems.empty())
@@ -159,7 +159,7 @@ void registerDataset(CLI::App& app) {
   s->add_option("DIR", status->dir, "the build folder")->required();
   s->add_flag("--json", status->json, "as JSON");
   s->callback([status] {
-    BuildFolder folder(status->dir);
+    const BuildFolder folder(status->dir, StateAccess::Read);
     fmt::print("{}", status->json ? statusJson(folder) : statusText(folder));
   });
 

@@ -88,16 +88,24 @@ const char* unitStateName(UnitState s) {
   return "?";
 }
 
-BuildState::BuildState(const std::filesystem::path& db) : path_(db.string()) {
-  if (sqlite3_open_v2(path_.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
-                      nullptr) != SQLITE_OK) {
+BuildState::BuildState(const std::filesystem::path& db, bool read_only) : path_(db.string()) {
+  std::error_code ec;
+  // read-only and nothing built yet: an empty state in memory, never a file written
+  const bool fresh = read_only && !std::filesystem::exists(db, ec);
+  read_only_ = read_only && !fresh;
+  const int flags = read_only_ ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  if (sqlite3_open_v2(fresh ? ":memory:" : path_.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     throw InputError(path_, "", "cannot open the build state: " + msg);
   }
-  // One writer (this process); a reader (`dataset status` while a build runs) waits a little
+  // One writer (the build); a reader (`dataset status` while a build runs) waits a little
   // rather than failing. Write-ahead logging keeps readers from blocking the writer.
   sqlite3_busy_timeout(db_, 10000);
+  if (!read_only_) createSchema();
+}
+
+void BuildState::createSchema() {
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=NORMAL");
   exec("CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT)");
@@ -122,6 +130,12 @@ void BuildState::exec(const std::string& sql) const {
 
 void BuildState::sync(const std::vector<std::pair<std::string, int64_t>>& ids_and_frames,
                       const std::string& plan_checksum) {
+  if (read_only_) {
+    Statement get(db_, "SELECT value FROM meta WHERE key = 'plan'", path_);
+    if (get.step() && get.text(0) != plan_checksum)
+      throw InputError(path_, "plan", "this build folder was made from another plan");
+    return;
+  }
   exec("BEGIN IMMEDIATE");
   try {
     Statement get(db_, "SELECT value FROM meta WHERE key = 'plan'", path_);

@@ -42,14 +42,16 @@ struct StateCounts {
 
 class BuildState {
  public:
-  /// Opens or creates the database (InputError naming it when it cannot).
-  explicit BuildState(const std::filesystem::path& db);
+  /// Opens or creates the database (InputError naming it when it cannot). Read-only: opens it
+  /// without writing (`status`, `verify`, from any host while a build runs); a database that
+  /// does not exist yet is then an empty one in memory (nothing built).
+  explicit BuildState(const std::filesystem::path& db, bool read_only = false);
   ~BuildState();
   BuildState(const BuildState&) = delete;
   BuildState& operator=(const BuildState&) = delete;
 
   /// Adds the units not in the database yet as pending, in one transaction; existing rows keep
-  /// their state. `plan_checksum` is stored and must match on later syncs (InputError
+  /// their state (read-only: only checks that the database belongs to the plan). `plan_checksum` is stored and must match on later syncs (InputError
   /// otherwise: a build folder belongs to one plan).
   void sync(const std::vector<std::pair<std::string, int64_t>>& ids_and_frames,
             const std::string& plan_checksum);
@@ -80,7 +82,9 @@ class BuildState {
 
  private:
   void exec(const std::string& sql) const;
+  void createSchema();
   sqlite3* db_ = nullptr;
+  bool read_only_ = false;
   std::string path_;
 };
 

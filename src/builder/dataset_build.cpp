@@ -34,7 +34,7 @@ double steadySeconds() {
 
 }  // namespace
 
-BuildFolder::BuildFolder(const fs::path& root, bool with_state) : root_(root) {
+BuildFolder::BuildFolder(const fs::path& root, StateAccess access) : root_(root) {
   const fs::path plan_file = root / "plan.json";
   std::error_code ec;
   if (!fs::is_regular_file(plan_file, ec))
@@ -43,8 +43,8 @@ BuildFolder::BuildFolder(const fs::path& root, bool with_state) : root_(root) {
                      "SPEC --out " + root.string() + "`)");
   plan_ = readPlan(plan_file);
   units_ = inet::units(plan_);
-  if (!with_state) return;
-  state_ = std::make_unique<BuildState>(root / "state.sqlite");
+  if (access == StateAccess::None) return;
+  state_ = std::make_unique<BuildState>(root / "state.sqlite", access == StateAccess::Read);
   std::vector<std::pair<std::string, int64_t>> rows;
   rows.reserve(units_.size());
   for (const WorkUnit& u : units_) rows.emplace_back(u.id, u.frames);
@@ -149,8 +149,17 @@ bool writeManifestIfComplete(const BuildFolder& folder) {
   const StateCounts c = folder.state().counts();
   if (c.units[static_cast<int>(UnitState::Done)] != c.total()) return false;
   std::string all;
-  for (size_t k = 0; k < folder.units().size(); ++k)
-    all += readTextFile(unitManifestPath(folder.root(), static_cast<int64_t>(k)));
+  for (size_t k = 0; k < folder.units().size(); ++k) {
+    const fs::path rows = unitManifestPath(folder.root(), static_cast<int64_t>(k));
+    std::error_code ec;
+    if (!fs::is_regular_file(rows, ec)) {  // `dataset verify` names it
+      std::fprintf(stderr,
+                   "warning: %s is missing: manifest.jsonl not written (dataset verify)\n",
+                   rows.string().c_str());
+      return false;
+    }
+    all += readTextFile(rows);
+  }
   writeTextAtomic(folder.root() / "manifest.jsonl", all);
   return true;
 }

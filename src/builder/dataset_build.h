@@ -39,12 +39,16 @@ struct BuildReport {
   int64_t failed_total = 0;    ///< units failed for good, over the whole state
 };
 
-/// The plan and state of a build folder. Opens (creates) state.sqlite and syncs it with
-/// plan.json, unless `with_state` is false (an MPI worker: only the coordinator touches the
-/// state); InputError if the folder holds no plan.
+/// How a command uses the job state: a build writes it; status and verify only read it (from
+/// any host, while a build runs); an MPI worker never opens it (only the coordinator does).
+enum class StateAccess { Write, Read, None };
+
+/// The plan and state of a build folder. Opens state.sqlite as `access` says (a build creates
+/// it and syncs it with plan.json); InputError if the folder holds no plan.
 class BuildFolder {
  public:
-  explicit BuildFolder(const std::filesystem::path& root, bool with_state = true);
+  explicit BuildFolder(const std::filesystem::path& root,
+                       StateAccess access = StateAccess::Write);
   const std::filesystem::path& root() const { return root_; }
   const DatasetPlan& plan() const { return plan_; }
   const std::vector<WorkUnit>& units() const { return units_; }

@@ -194,7 +194,7 @@ BuildReport buildMpi(const std::filesystem::path& root, const BuildOptions& opt,
   if (rank_out) *rank_out = rank;
   if (ranks_out) *ranks_out = ranks;
   // a bad folder is found by every rank alike (each reads the plan), so all fail together
-  BuildFolder folder(root, rank == 0);
+  BuildFolder folder(root, rank == 0 ? StateAccess::Write : StateAccess::None);
   BuildReport report;
   if (ranks == 1) {
     report = buildLocal(folder, opt);
