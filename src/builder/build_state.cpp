@@ -36,7 +36,8 @@ class Statement {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_ROW) return true;
     if (rc == SQLITE_DONE) return false;
-    throw InputError(where_, "", fmt::format("SQLite: {}", sqlite3_errmsg(sqlite3_db_handle(stmt_))));
+    throw InputError(where_, "",
+                     fmt::format("SQLite: {}", sqlite3_errmsg(sqlite3_db_handle(stmt_))));
   }
   void reset() {
     sqlite3_reset(stmt_);
@@ -109,9 +110,10 @@ void BuildState::createSchema() {
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=NORMAL");
   exec("CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT)");
-  exec("CREATE TABLE IF NOT EXISTS units (ord INTEGER PRIMARY KEY, id TEXT UNIQUE NOT NULL, "
-       "frames INTEGER, state INTEGER, rank INTEGER, started REAL, seconds REAL, "
-       "attempts INTEGER, error TEXT, checksums TEXT)");
+  exec(
+      "CREATE TABLE IF NOT EXISTS units (ord INTEGER PRIMARY KEY, id TEXT UNIQUE NOT NULL, "
+      "frames INTEGER, state INTEGER, rank INTEGER, started REAL, seconds REAL, "
+      "attempts INTEGER, error TEXT, checksums TEXT)");
   exec("CREATE INDEX IF NOT EXISTS units_by_state ON units (state, ord)");
 }
 
@@ -142,8 +144,8 @@ void BuildState::sync(const std::vector<std::pair<std::string, int64_t>>& ids_an
     if (get.step()) {
       if (get.text(0) != plan_checksum)
         throw InputError(path_, "plan",
-                         "this build folder was made from another plan (checksum " +
-                             get.text(0) + ", the plan now " + plan_checksum +
+                         "this build folder was made from another plan (checksum " + get.text(0) +
+                             ", the plan now " + plan_checksum +
                              "); build a changed plan into a new folder");
     } else {
       Statement put(db_, "INSERT INTO meta (key, value) VALUES ('plan', ?)", path_);
@@ -165,9 +167,9 @@ void BuildState::sync(const std::vector<std::pair<std::string, int64_t>>& ids_an
         ins.reset();
       }
     } else if (count.integer(0) != static_cast<int64_t>(ids_and_frames.size())) {
-      throw InputError(path_, "units",
-                       fmt::format("holds {} units, the plan has {}", count.integer(0),
-                                   ids_and_frames.size()));
+      throw InputError(
+          path_, "units",
+          fmt::format("holds {} units, the plan has {}", count.integer(0), ids_and_frames.size()));
     }
     exec("COMMIT");
   } catch (...) {
@@ -192,10 +194,9 @@ int64_t BuildState::retryFailed(int max_attempts) {
 std::optional<UnitRecord> BuildState::claim(int rank, double now) {
   exec("BEGIN IMMEDIATE");
   try {
-    Statement next(db_,
-                   fmt::format("SELECT {} FROM units WHERE state = 0 ORDER BY ord LIMIT 1",
-                               kColumns),
-                   path_);
+    Statement next(
+        db_, fmt::format("SELECT {} FROM units WHERE state = 0 ORDER BY ord LIMIT 1", kColumns),
+        path_);
     if (!next.step()) {
       exec("COMMIT");
       return std::nullopt;
@@ -215,8 +216,9 @@ std::optional<UnitRecord> BuildState::claim(int rank, double now) {
 }
 
 void BuildState::markDone(const std::string& id, double seconds, const std::string& checksums) {
-  Statement s(db_, "UPDATE units SET state = 2, seconds = ?, checksums = ?, error = '' "
-                   "WHERE id = ?",
+  Statement s(db_,
+              "UPDATE units SET state = 2, seconds = ?, checksums = ?, error = '' "
+              "WHERE id = ?",
               path_);
   s.bind(1, seconds).bind(2, checksums).bind(3, id).step();
 }
@@ -255,6 +257,21 @@ std::vector<UnitRecord> BuildState::units(std::optional<UnitState> state, int64_
   sql += " ORDER BY ord";
   if (limit > 0) sql += fmt::format(" LIMIT {}", limit);
   Statement s(db_, sql, path_);
+  std::vector<UnitRecord> out;
+  while (s.step()) out.push_back(recordOf(s));
+  return out;
+}
+
+void BuildState::forEach(UnitState state, const std::function<void(const UnitRecord&)>& f) const {
+  Statement s(db_, fmt::format("SELECT {} FROM units WHERE state = ? ORDER BY ord", kColumns),
+              path_);
+  s.bind(1, static_cast<int64_t>(state));
+  while (s.step()) f(recordOf(s));
+}
+
+std::vector<UnitRecord> BuildState::withErrors() const {
+  Statement s(db_, fmt::format("SELECT {} FROM units WHERE error != '' ORDER BY ord", kColumns),
+              path_);
   std::vector<UnitRecord> out;
   while (s.step()) out.push_back(recordOf(s));
   return out;

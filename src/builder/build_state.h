@@ -7,6 +7,7 @@
 // puts the units the killed job left running back to pending (resetRunning) and goes on.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,11 @@ class BuildState {
   StateCounts counts() const;
   /// Rows in a state, in order (all when state is empty), at most `limit` (0 = all).
   std::vector<UnitRecord> units(std::optional<UnitState> state, int64_t limit = 0) const;
+  /// Calls `f` with every row in a state, in order, one at a time (a million done units'
+  /// checksums do not fit in memory at once).
+  void forEach(UnitState state, const std::function<void(const UnitRecord&)>& f) const;
+  /// The rows with an error (failed, or pending after a failed attempt), in order.
+  std::vector<UnitRecord> withErrors() const;
   std::optional<UnitRecord> unit(const std::string& id) const;
   /// Done units' seconds and frames per rank that ran them: rank, units, frames, seconds.
   struct RankStats {

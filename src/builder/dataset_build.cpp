@@ -40,7 +40,8 @@ BuildFolder::BuildFolder(const fs::path& root, StateAccess access) : root_(root)
   if (!fs::is_regular_file(plan_file, ec))
     throw InputError(root.string(), "plan.json",
                      "not a build folder: no plan.json (make one with `interiornet dataset plan "
-                     "SPEC --out " + root.string() + "`)");
+                     "SPEC --out " +
+                         root.string() + "`)");
   plan_ = readPlan(plan_file);
   units_ = inet::units(plan_);
   if (access == StateAccess::None) return;
@@ -51,7 +52,74 @@ BuildFolder::BuildFolder(const fs::path& root, StateAccess access) : root_(root)
   state_->sync(rows, specChecksum(readTextFile(plan_file)));
 }
 
-void prepareResume(BuildFolder& folder, const BuildOptions& opt) {
+namespace {
+
+/// VmRSS of this process from /proc/self/status, in kB (0 where there is none).
+int64_t residentKb() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::atoll(line.c_str() + 6);
+  return 0;
+}
+
+/// The unit's position in the plan (`unit` is one of folder.units()).
+int64_t unitOrder(const BuildFolder& folder, const WorkUnit& unit) {
+  const int64_t order = static_cast<int64_t>(&unit - folder.units().data());
+  INET_CHECK(order >= 0 && order < static_cast<int64_t>(folder.units().size()));
+  return order;
+}
+
+}  // namespace
+
+bool writeManifestIfComplete(const BuildFolder& folder) {
+  const StateCounts c = folder.state().counts();
+  if (c.units[static_cast<int>(UnitState::Done)] != c.total()) return false;
+  for (size_t k = 0; k < folder.units().size(); ++k) {
+    const fs::path rows = unitManifestPath(folder.root(), static_cast<int64_t>(k));
+    std::error_code ec;
+    if (!fs::is_regular_file(rows, ec)) {  // `dataset verify` names it
+      std::fprintf(stderr, "warning: %s is missing: manifest.jsonl not written (dataset verify)\n",
+                   rows.string().c_str());
+      return false;
+    }
+  }
+  // streamed unit by unit: the paper's 20M frames would be tens of GB of rows
+  writeFileAtomic(folder.root() / "manifest.jsonl", [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    for (size_t k = 0; k < folder.units().size(); ++k) {
+      const fs::path rows = unitManifestPath(folder.root(), static_cast<int64_t>(k));
+      std::ifstream in(rows, std::ios::binary);
+      if (fs::file_size(rows) > 0) out << in.rdbuf();  // (inserting nothing would set failbit)
+    }
+    if (!out) throw InputError(tmp.string(), "", "cannot write the manifest");
+  });
+  return true;
+}
+
+UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
+  UnitResult r;
+  const double t0 = steadySeconds();
+  try {
+    const UnitOutput out = runUnit(folder.plan(), unit, unitOrder(folder, unit), folder.root());
+    r.text = out.checksums;
+    r.setup_s = out.setup_s;
+    r.sequences_s = out.sequences_s;
+    r.kind = UnitResult::Kind::Done;
+  } catch (const StopRequested& e) {
+    r.kind = UnitResult::Kind::Stopped;
+    r.text = e.what();
+  } catch (const std::exception& e) {
+    r.kind = UnitResult::Kind::Failed;
+    r.text = e.what();
+  }
+  r.seconds = steadySeconds() - t0;
+  r.rss_kb = residentKb();
+  return r;
+}
+
+Coordinator::Coordinator(BuildFolder& folder, const BuildOptions& opt)
+    : folder_(folder), opt_(opt), t0_(steadySeconds()) {
   BuildState& state = folder.state();
   const std::vector<int64_t> again = state.resetRunning();
   // nothing runs now: a temporary file in a folder of those units is a killed write
@@ -79,130 +147,68 @@ void prepareResume(BuildFolder& folder, const BuildOptions& opt) {
   const int64_t retried = state.retryFailed(opt.max_attempts);
   if (retried > 0)
     std::fprintf(stderr, "retrying %lld failed unit(s)\n", static_cast<long long>(retried));
+  const StateCounts c = state.counts();
+  frames_done_ = c.frames[static_cast<int>(UnitState::Done)];
+  bar_ = std::make_unique<ProgressBar>(c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3],
+                                       "frames", opt.progress);
+  bar_->update(frames_done_);
 }
 
-BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
-  BuildState& state = folder.state();
-  BuildReport report;
-  const double t0 = steadySeconds();
-  prepareResume(folder, opt);
-  StateCounts c = state.counts();
-  const int64_t total_frames = c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3];
-  int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
-  ProgressBar bar(total_frames, "frames", opt.progress);
-  bar.update(frames_done);
-  while (opt.max_units == 0 || report.units_run < opt.max_units) {
-    stopIfSignalled("between work units of " + folder.root().string());
-    const std::optional<UnitRecord> r = state.claim(0, nowSeconds());
-    if (!r) break;
-    const WorkUnit& unit = folder.unit(r->order);
-    ++report.units_run;
-    const UnitResult result = runUnitCaught(folder, unit);
-    report.unit_s += result.seconds;
-    report.setup_s += result.setup_s;
-    report.sequences_s += result.sequences_s;
-    report.rss_kb[0].push_back(result.rss_kb);
-    const UnitState after = recordResult(folder, unit, 0, result, opt);
-    if (result.kind == UnitResult::Kind::Stopped) {
-      bar.finish();
-      stopIfSignalled("during unit " + unit.id);
-    }
-    if (after == UnitState::Done) {
-      ++report.units_done;
-      report.frames += unit.frames;
-      frames_done += unit.frames;
-      bar.update(frames_done);
-    } else if (after == UnitState::Failed) {
-      ++report.units_failed;
-    }
-  }
-  bar.finish();
-  writeManifestIfComplete(folder);
-  c = state.counts();
-  report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
-  report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
-  report.wall_s = steadySeconds() - t0;
-  return report;
+std::optional<int64_t> Coordinator::claim(int rank) {
+  if (stopSignal() != 0 || (opt_.max_units > 0 && report_.units_run >= opt_.max_units))
+    return std::nullopt;
+  const std::optional<UnitRecord> r = folder_.state().claim(rank, nowSeconds());
+  if (!r) return std::nullopt;
+  ++report_.units_run;
+  return r->order;
 }
 
-namespace {
-
-/// VmRSS of this process from /proc/self/status, in kB (0 where there is none).
-int64_t residentKb() {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("VmRSS:", 0) == 0) return std::atoll(line.c_str() + 6);
-  return 0;
-}
-
-/// The unit's position in the plan (`unit` is one of folder.units()).
-int64_t unitOrder(const BuildFolder& folder, const WorkUnit& unit) {
-  const int64_t order = static_cast<int64_t>(&unit - folder.units().data());
-  INET_CHECK(order >= 0 && order < static_cast<int64_t>(folder.units().size()));
-  return order;
-}
-
-}  // namespace
-
-bool writeManifestIfComplete(const BuildFolder& folder) {
-  const StateCounts c = folder.state().counts();
-  if (c.units[static_cast<int>(UnitState::Done)] != c.total()) return false;
-  std::string all;
-  for (size_t k = 0; k < folder.units().size(); ++k) {
-    const fs::path rows = unitManifestPath(folder.root(), static_cast<int64_t>(k));
-    std::error_code ec;
-    if (!fs::is_regular_file(rows, ec)) {  // `dataset verify` names it
-      std::fprintf(stderr,
-                   "warning: %s is missing: manifest.jsonl not written (dataset verify)\n",
-                   rows.string().c_str());
-      return false;
-    }
-    all += readTextFile(rows);
-  }
-  writeTextAtomic(folder.root() / "manifest.jsonl", all);
-  return true;
-}
-
-UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit) {
-  UnitResult r;
-  const double t0 = steadySeconds();
-  try {
-    const UnitOutput out = runUnit(folder.plan(), unit, unitOrder(folder, unit), folder.root());
-    r.text = out.checksums;
-    r.setup_s = out.setup_s;
-    r.sequences_s = out.sequences_s;
-    r.kind = UnitResult::Kind::Done;
-  } catch (const StopRequested& e) {
-    r.kind = UnitResult::Kind::Stopped;
-    r.text = e.what();
-  } catch (const std::exception& e) {
-    r.kind = UnitResult::Kind::Failed;
-    r.text = e.what();
-  }
-  r.seconds = steadySeconds() - t0;
-  r.rss_kb = residentKb();
-  return r;
-}
-
-UnitState recordResult(BuildFolder& folder, const WorkUnit& unit, int rank,
-                       const UnitResult& result, const BuildOptions& opt) {
-  BuildState& state = folder.state();
+void Coordinator::record(int64_t order, int rank, const UnitResult& result) {
+  const WorkUnit& unit = folder_.unit(order);
+  BuildState& state = folder_.state();
+  report_.unit_s += result.seconds;
+  report_.setup_s += result.setup_s;
+  report_.sequences_s += result.sequences_s;
+  report_.rss_kb[rank].push_back(result.rss_kb);
   switch (result.kind) {
     case UnitResult::Kind::Done:
       state.markDone(unit.id, result.seconds, result.text);
-      return UnitState::Done;
+      ++report_.units_done;
+      report_.frames += unit.frames;
+      frames_done_ += unit.frames;
+      bar_->update(frames_done_);
+      return;
     case UnitResult::Kind::Stopped:
       state.release(unit.id);  // not done: a rerun does it
-      return UnitState::Pending;
+      return;
     case UnitResult::Kind::Failed:
       break;
   }
-  state.markFailed(unit.id, result.text, opt.max_attempts);
+  state.markFailed(unit.id, result.text, opt_.max_attempts);
   const auto after = state.unit(unit.id);
-  std::fprintf(stderr, "unit %s failed on rank %d (attempt %d of %d): %s\n", unit.id.c_str(),
-               rank, after ? after->attempts : 0, opt.max_attempts, result.text.c_str());
-  return after ? after->state : UnitState::Failed;
+  std::fprintf(stderr, "unit %s failed on rank %d (attempt %d of %d): %s\n", unit.id.c_str(), rank,
+               after ? after->attempts : 0, opt_.max_attempts, result.text.c_str());
+  if (!after || after->state == UnitState::Failed) ++report_.units_failed;
+}
+
+BuildReport Coordinator::finish(int workers) {
+  bar_->finish();
+  writeManifestIfComplete(folder_);
+  const StateCounts c = folder_.state().counts();
+  report_.pending_after = c.units[static_cast<int>(UnitState::Pending)];
+  report_.failed_total = c.units[static_cast<int>(UnitState::Failed)];
+  report_.wall_s = steadySeconds() - t0_;
+  report_.workers = workers;
+  return report_;
+}
+
+BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt) {
+  Coordinator coordinator(folder, opt);
+  while (const std::optional<int64_t> order = coordinator.claim(0))
+    coordinator.record(*order, 0, runUnitCaught(folder, folder.unit(*order)));
+  const BuildReport report = coordinator.finish(1);
+  stopIfSignalled("between work units of " + folder.root().string());
+  return report;
 }
 
 namespace {
@@ -225,8 +231,7 @@ StatusData statusData(const BuildFolder& folder) {
   const int64_t left = d.counts.frames[0] + d.counts.frames[1];
   d.eta_s = d.rate > 0 ? static_cast<double>(left) / d.rate : 0.0;
   d.running = st.units(UnitState::Running);
-  for (const UnitRecord& u : st.units(std::nullopt))
-    if (!u.error.empty()) d.errors.push_back(u);
+  d.errors = st.withErrors();
   return d;
 }
 
@@ -235,11 +240,10 @@ StatusData statusData(const BuildFolder& folder) {
 std::string statusText(const BuildFolder& folder) {
   const StatusData d = statusData(folder);
   const PlanCounts pc = planCounts(folder.plan());
-  std::string s = fmt::format("dataset {} ({}): {} layouts, {} sequences, {} units, {} frames\n",
-                              folder.plan().spec.name, folder.root().string(), pc.layouts,
-                              pc.sequences, d.counts.total(),
-                              d.counts.frames[0] + d.counts.frames[1] + d.counts.frames[2] +
-                                  d.counts.frames[3]);
+  std::string s = fmt::format(
+      "dataset {} ({}): {} layouts, {} sequences, {} units, {} frames\n", folder.plan().spec.name,
+      folder.root().string(), pc.layouts, pc.sequences, d.counts.total(),
+      d.counts.frames[0] + d.counts.frames[1] + d.counts.frames[2] + d.counts.frames[3]);
   for (int k = 0; k < 4; ++k)
     s += fmt::format("  {:<8} {:>8} units {:>10} frames\n", unitStateName(UnitState(k)),
                      d.counts.units[k], d.counts.frames[k]);
@@ -247,8 +251,8 @@ std::string statusText(const BuildFolder& folder) {
   if (d.eta_s > 0) s += fmt::format(", ETA {}", formatDuration(d.eta_s));
   s += "\n";
   for (const auto& r : d.ranks)
-    s += fmt::format("  rank {:<3} {:>6} units {:>8} frames {:>9.1f} s {:>7.2f} frames/s\n",
-                     r.rank, r.units, r.frames, r.seconds,
+    s += fmt::format("  rank {:<3} {:>6} units {:>8} frames {:>9.1f} s {:>7.2f} frames/s\n", r.rank,
+                     r.units, r.frames, r.seconds,
                      r.seconds > 0 ? static_cast<double>(r.frames) / r.seconds : 0.0);
   for (const UnitRecord& u : d.running)
     s += fmt::format("  running  {} on rank {}\n", u.id, u.rank);
@@ -263,18 +267,14 @@ std::string statusJson(const BuildFolder& folder) {
   const StatusData d = statusData(folder);
   nlohmann::ordered_json j;
   j["dataset"] = folder.plan().spec.name;
-  for (int k = 0; k < 4; ++k)
-    j["units"][unitStateName(UnitState(k))] = d.counts.units[k];
-  for (int k = 0; k < 4; ++k)
-    j["frames"][unitStateName(UnitState(k))] = d.counts.frames[k];
+  for (int k = 0; k < 4; ++k) j["units"][unitStateName(UnitState(k))] = d.counts.units[k];
+  for (int k = 0; k < 4; ++k) j["frames"][unitStateName(UnitState(k))] = d.counts.frames[k];
   j["frames_per_s"] = d.rate;
   j["eta_s"] = d.eta_s;
   j["ranks"] = nlohmann::ordered_json::array();
   for (const auto& r : d.ranks)
-    j["ranks"].push_back({{"rank", r.rank},
-                          {"units", r.units},
-                          {"frames", r.frames},
-                          {"seconds", r.seconds}});
+    j["ranks"].push_back(
+        {{"rank", r.rank}, {"units", r.units}, {"frames", r.frames}, {"seconds", r.seconds}});
   j["running"] = nlohmann::ordered_json::array();
   for (const UnitRecord& u : d.running)
     j["running"].push_back({{"unit", u.id}, {"rank", u.rank}, {"started", u.started}});
@@ -289,14 +289,14 @@ std::string statusJson(const BuildFolder& folder) {
 
 VerifyReport verifyBuild(const BuildFolder& folder) {
   VerifyReport v;
-  for (const UnitRecord& u : folder.state().units(UnitState::Done)) {
+  folder.state().forEach(UnitState::Done, [&](const UnitRecord& u) {
     ++v.units;
     nlohmann::json sums;
     try {
       sums = nlohmann::json::parse(u.checksums);
     } catch (const nlohmann::json::exception&) {
       v.problems.push_back(u.id + ": its recorded checksums do not parse");
-      continue;
+      return;
     }
     for (const auto& [rel, want] : sums.items()) {
       ++v.files;
@@ -311,7 +311,7 @@ VerifyReport verifyBuild(const BuildFolder& folder) {
         v.problems.push_back(fmt::format("{}: checksum {} where unit {} recorded {}", rel, got,
                                          u.id, want.get<std::string>()));
     }
-  }
+  });
   return v;
 }
 

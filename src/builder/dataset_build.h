@@ -11,11 +11,13 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "builder/build_state.h"
 #include "builder/dataset_plan.h"
+#include "core/progress.h"
 
 namespace inet {
 
@@ -65,32 +67,47 @@ class BuildFolder {
   std::unique_ptr<BuildState> state_;
 };
 
-/// Before any unit runs: units a killed build left running are pending again, and the
-/// temporary files they may have left half-written (in their layouts' folders and among the
-/// unit manifests) are removed, so a resumed build leaves no partial file. Failed units with
-/// attempts left are pending again. Says what it did on stderr.
-void prepareResume(BuildFolder& folder, const BuildOptions& opt);
-
-/// Runs every pending unit of the build folder in this process (TBB threads inside each unit),
-/// in plan order. Units a killed job left running are pending again first. A SIGTERM or SIGINT
-/// (core/stop.h) stops after the unit in flight reaches a safe point: that unit goes back to
-/// pending and StopRequested propagates.
-BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt);
-
 /// What one unit did, as a rank reports it to the coordinator.
 struct UnitResult {
   enum class Kind { Done, Failed, Stopped } kind = Kind::Done;
   double seconds = 0.0;
   double setup_s = 0.0, sequences_s = 0.0;  ///< of seconds: UnitOutput's
   int64_t rss_kb = 0;  ///< the rank's resident memory after the unit (VmRSS)
-  std::string text;  ///< Done: the checksums; Failed: the error; Stopped: the message
+  std::string text;    ///< Done: the checksums; Failed: the error; Stopped: the message
 };
 /// Runs one unit and says how it went (never throws, but for a bug).
 UnitResult runUnitCaught(const BuildFolder& folder, const WorkUnit& unit);
 
-/// The coordinator's side of a result: records it in the state; returns the unit's state after.
-UnitState recordResult(BuildFolder& folder, const WorkUnit& unit, int rank,
-                       const UnitResult& result, const BuildOptions& opt);
+/// The one process that writes the job state, for the local build and for MPI's rank 0: hands
+/// out units, records what the ranks report, keeps the progress bar and the report.
+class Coordinator {
+ public:
+  /// Before any unit runs: units a killed build left running are pending again, and the
+  /// temporary files they may have left half-written (in their layouts' folders and among the
+  /// unit manifests) are removed, so a resumed build leaves no partial file; failed units with
+  /// attempts left are pending again. Says what it did on stderr.
+  Coordinator(BuildFolder& folder, const BuildOptions& opt);
+  /// The next unit's order for `rank`, marked running; none when nothing is pending, after
+  /// opt.max_units, or after a stop signal.
+  std::optional<int64_t> claim(int rank);
+  /// Records what `rank` reports of unit `order`.
+  void record(int64_t order, int rank, const UnitResult& result);
+  /// Writes manifest.jsonl when every unit is done; the report of the build so far.
+  BuildReport finish(int workers);
+
+ private:
+  BuildFolder& folder_;
+  BuildOptions opt_;
+  BuildReport report_;
+  double t0_ = 0.0;
+  int64_t frames_done_ = 0;
+  std::unique_ptr<ProgressBar> bar_;
+};
+
+/// Runs every pending unit of the build folder in this process (TBB threads inside each unit),
+/// in plan order. A SIGTERM or SIGINT (core/stop.h) stops after the unit in flight reaches a
+/// safe point: that unit goes back to pending and StopRequested propagates.
+BuildReport buildLocal(BuildFolder& folder, const BuildOptions& opt);
 
 /// When every unit is done: joins the units' manifest rows (unit_runner.h) in plan order into
 /// manifest.jsonl (atomically). Returns whether it wrote it.

@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "core/progress.h"
 #include "core/stop.h"
 
 namespace inet {
@@ -22,16 +21,6 @@ constexpr int kTagReport = 1;  // worker -> coordinator: a result and a request 
 constexpr int kTagWork = 2;    // coordinator -> worker: a unit's order, or -1: stop
 
 enum ReportKind : int64_t { kHello = 0, kDone = 1, kFailed = 2, kStopped = 3 };
-
-double steadySeconds() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-double nowSeconds() {
-  using namespace std::chrono;
-  return duration<double>(system_clock::now().time_since_epoch()).count();
-}
 
 /// A report's fixed part; the text (checksums or error) follows it in the message.
 struct ReportHeader {
@@ -68,17 +57,8 @@ void sendWork(int rank, int64_t order) {
 }
 
 BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) {
-  BuildState& state = folder.state();
-  BuildReport report;
-  const double t0 = steadySeconds();
-  prepareResume(folder, opt);  // the workers wait for their first unit meanwhile
-  StateCounts c = state.counts();
-  int64_t frames_done = c.frames[static_cast<int>(UnitState::Done)];
-  ProgressBar bar(c.frames[0] + c.frames[1] + c.frames[2] + c.frames[3], "frames",
-                  opt.progress);
-  bar.update(frames_done);
+  Coordinator coordinator(folder, opt);  // the workers wait for their first unit meanwhile
   int active = ranks - 1;
-  int64_t handed = 0;
   std::vector<char> buf;
   while (active > 0) {
     int flag = 0;
@@ -95,66 +75,33 @@ BuildReport coordinate(BuildFolder& folder, const BuildOptions& opt, int ranks) 
     MPI_Recv(buf.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kTagReport, MPI_COMM_WORLD,
              MPI_STATUS_IGNORE);
     std::memcpy(&h, buf.data(), sizeof h);
-    const int64_t kind = h.kind, order = h.order;
     const int rank = st.MPI_SOURCE;
-    bool stop_rank = false;
-    if (kind != kHello && order >= 0) {
-      const WorkUnit& unit = folder.unit(order);
+    if (h.kind != kHello && h.order >= 0) {
       UnitResult r;
-      r.kind = kind == kDone     ? UnitResult::Kind::Done
-               : kind == kFailed ? UnitResult::Kind::Failed
-                                 : UnitResult::Kind::Stopped;
+      r.kind = h.kind == kDone     ? UnitResult::Kind::Done
+               : h.kind == kFailed ? UnitResult::Kind::Failed
+                                   : UnitResult::Kind::Stopped;
       r.seconds = h.seconds;
+      r.setup_s = h.setup_s;
+      r.sequences_s = h.sequences_s;
+      r.rss_kb = h.rss_kb;
       r.text.assign(buf.data() + sizeof h, static_cast<size_t>(bytes) - sizeof h);
-      report.unit_s += h.seconds;
-      report.setup_s += h.setup_s;
-      report.sequences_s += h.sequences_s;
-      report.rss_kb[rank].push_back(h.rss_kb);
-      const UnitState after = recordResult(folder, unit, rank, r, opt);
-      if (after == UnitState::Done) {
-        ++report.units_done;
-        report.frames += unit.frames;
-        frames_done += unit.frames;
-        bar.update(frames_done);
-      } else if (after == UnitState::Failed) {
-        ++report.units_failed;
-      }
+      coordinator.record(h.order, rank, r);
     }
-    stop_rank = kind == kStopped;  // a rank that was stopped leaves
-    std::optional<UnitRecord> next;
-    if (!stop_rank && stopSignal() == 0 && (opt.max_units == 0 || handed < opt.max_units))
-      next = state.claim(rank, nowSeconds());
-    if (next) {
-      ++handed;
-      ++report.units_run;
-      sendWork(rank, next->order);
-    } else {
-      sendWork(rank, -1);
-      --active;
-    }
+    // a rank that was stopped leaves; the others get work while there is some
+    const std::optional<int64_t> next = h.kind == kStopped ? std::nullopt : coordinator.claim(rank);
+    sendWork(rank, next ? *next : -1);
+    if (!next) --active;
   }
-  bar.finish();
-  writeManifestIfComplete(folder);
-  c = state.counts();
-  report.pending_after = c.units[static_cast<int>(UnitState::Pending)];
-  report.failed_total = c.units[static_cast<int>(UnitState::Failed)];
-  report.wall_s = steadySeconds() - t0;
-  report.workers = ranks - 1;
-  return report;
+  return coordinator.finish(ranks - 1);
 }
 
-BuildReport work(const BuildFolder& folder) {
-  BuildReport report;
-  const double t0 = steadySeconds();
+void work(const BuildFolder& folder) {
   sendReport(ReportHeader{}, "");
   while (true) {
     const int64_t order = receiveWork();
     if (order < 0) break;
-    const WorkUnit& unit = folder.unit(order);
-    const UnitResult r = runUnitCaught(folder, unit);
-    ++report.units_run;
-    report.unit_s += r.seconds;
-    if (r.kind == UnitResult::Kind::Done) ++report.units_done, report.frames += unit.frames;
+    const UnitResult r = runUnitCaught(folder, folder.unit(order));
     ReportHeader h;
     h.kind = r.kind == UnitResult::Kind::Done     ? kDone
              : r.kind == UnitResult::Kind::Failed ? kFailed
@@ -166,8 +113,6 @@ BuildReport work(const BuildFolder& folder) {
     h.rss_kb = r.rss_kb;
     sendReport(h, r.text);
   }
-  report.wall_s = steadySeconds() - t0;
-  return report;
 }
 
 /// MPI_Init/MPI_Finalize around the build, finalising on the way out of an exception too.
@@ -201,7 +146,7 @@ BuildReport buildMpi(const std::filesystem::path& root, const BuildOptions& opt,
   } else if (rank == 0) {
     report = coordinate(folder, opt, ranks);
   } else {
-    report = work(folder);
+    work(folder);  // rank 0 reports for the build
   }
   stopIfSignalled(fmt::format("(rank {} of {})", rank, ranks));
   return report;

@@ -20,7 +20,7 @@ namespace inet {
 bool launchedByMpi();
 
 /// Runs the build on every rank of MPI_COMM_WORLD (initialises and finalises MPI). On rank 0
-/// returns the report of the whole build; on workers, theirs. `root` is the build folder.
+/// returns the report of the whole build; on workers, an empty one. `root` is the build folder.
 BuildReport buildMpi(const std::filesystem::path& root, const BuildOptions& opt, int* rank,
                      int* ranks);
 

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace inet {
 
@@ -34,16 +35,6 @@ fs::path layoutFolder(const PlannedLayout& layout) {
 }
 
 namespace {
-
-/// "a,b,c"
-std::string commaList(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& item : items) {
-    if (!out.empty()) out.push_back(',');
-    out.append(item);
-  }
-  return out;
-}
 
 /// What every job of the plan shares: the scene source, camera, render settings, passes.
 SequenceJob baseJob(const DatasetPlan& plan, const PlannedLayout& layout, const fs::path& data) {
@@ -71,8 +62,8 @@ SequenceJob baseJob(const DatasetPlan& plan, const PlannedLayout& layout, const 
   job.spp = spec.render.spp;
   job.denoise = spec.render.denoise;
   job.max_bounces = spec.render.max_bounces;
-  job.passes = commaList(spec.passes);
-  job.formats = commaList(spec.formats);
+  job.passes = joinCommaList(spec.passes);
+  job.formats = joinCommaList(spec.formats);
   job.imu_rate = spec.imu;
   job.progress = false;
   return job;
@@ -117,11 +108,11 @@ std::vector<SequenceJob> jobsOf(const DatasetPlan& plan, const WorkUnit& unit,
     std::vector<std::string> configs, passes;
     for (const SceneConfiguration& c : spec.sparse.configurations)
       configs.push_back(configurationName(c, layout));
-    job.config = commaList(configs);
+    job.config = joinCommaList(configs);
     // a single view has no motion: no events
     for (const std::string& p : spec.passes)
       if (p != "events") passes.push_back(p);
-    job.passes = commaList(passes);
+    job.passes = joinCommaList(passes);
     jobs.push_back(std::move(job));
   }
   return jobs;
@@ -187,7 +178,7 @@ UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
         row["configuration"] = seq.configuration;
         row["sequence"] = job.sequence;
         row["folder"] = fs::path(seq.dir).lexically_relative(root).generic_string();
-        row["trajectory"] = planned ? planned->trajectory : std::string("two-body");
+        row["trajectory"] = job.trajectory;
         if (planned) {
           row["v_mult"] = planned->v_mult;
           row["w_mult"] = planned->w_mult;

@@ -1,11 +1,32 @@
 #include "core/text.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 
 #include <fmt/format.h>
 
 namespace inet {
+
+std::vector<std::string> splitCommaList(const std::string& list) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find(',', start), list.size());
+    if (end > start) out.push_back(list.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string joinCommaList(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) {
+    if (!out.empty()) out.push_back(',');
+    out.append(item);
+  }
+  return out;
+}
 
 std::vector<std::string> splitWhitespace(const std::string& line) {
   std::vector<std::string> out;

@@ -5,6 +5,11 @@
 
 namespace inet {
 
+/// The non-empty items of a comma list ("rgb,depth,,label" -> rgb, depth, label).
+std::vector<std::string> splitCommaList(const std::string& list);
+/// The items joined with commas, the inverse of splitCommaList.
+std::string joinCommaList(const std::vector<std::string>& items);
+
 /// The fields of `line` between runs of spaces and tabs.
 std::vector<std::string> splitWhitespace(const std::string& line);
 

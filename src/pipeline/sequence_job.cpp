@@ -12,7 +12,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -51,15 +50,6 @@ namespace inet {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 /// The camera path of a sequence: one pose per frame, and the finer path that motion blur and
 /// rolling shutter interpolate (the frames themselves for a file).
@@ -359,7 +349,7 @@ struct SceneConfig {
 /// "original,lighting:1,rearranged:2" (no repeats).
 std::vector<SceneConfig> parseConfigs(const std::string& list) {
   std::vector<SceneConfig> out;
-  for (const std::string& item : splitList(list)) {
+  for (const std::string& item : splitCommaList(list)) {
     SceneConfig c;
     const size_t colon = item.find(':');
     const std::string kind = item.substr(0, colon);
@@ -404,12 +394,32 @@ Scene variantOf(const Scene& original, const SceneConfig& c) {
   return s;
 }
 
-SequenceJobResult::Sequence renderSequence(
-    const SequenceJob& a, const SceneConfig& c, const CameraPath& cam, const LensModel& lens,
-    LensType lens_type, const SequencePasses& want, PassMask passes, const RenderOptions& opt,
-    const ImuOptions& imu, const std::optional<ImuSequence>& imu_seq,
-    const std::optional<PoseSpline>& spline, const EventCameraOptions& event_opt,
-    const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats);
+/// What a job loads before its first frame: the scene, the camera path, every configuration's
+/// scene, the IMU and the event camera's spline.
+struct Prepared {
+  std::string key;
+  Scene scene;
+  CameraPath cam;
+  std::vector<SceneConfig> configs;
+  ImuOptions imu;
+  std::optional<ImuSequence> imu_seq;
+  std::optional<PoseSpline> spline;
+};
+
+/// What a job derives from its settings before the first frame, shared by its configurations.
+struct JobSetup {
+  LensModel lens;
+  LensType lens_type = LensType::Pinhole;
+  SequencePasses want;
+  PassMask passes = 0;  ///< the frame passes written
+  RenderOptions opt;
+  EventCameraOptions event_opt;
+  KinectNoiseOptions depth_noise;
+  std::vector<std::string> formats;
+};
+
+SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConfig& c,
+                                           const JobSetup& setup, const Prepared& prepared);
 
 /// --contact-sheet: up to 6 frames of cam0 spread over the sequence, at half size, captioned
 /// with their time stamps, as one JPEG (.jpg) or PNG.
@@ -539,12 +549,19 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
 }
 
 /// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.
-SequenceJobResult::Sequence renderSequence(
-    const SequenceJob& a, const SceneConfig& c, const CameraPath& cam, const LensModel& lens,
-    LensType lens_type, const SequencePasses& want, PassMask passes, const RenderOptions& opt,
-    const ImuOptions& imu, const std::optional<ImuSequence>& imu_seq,
-    const std::optional<PoseSpline>& spline, const EventCameraOptions& event_opt,
-    const KinectNoiseOptions& depth_noise, const std::vector<std::string>& formats) {
+SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConfig& c,
+                                           const JobSetup& setup, const Prepared& prepared) {
+  const LensModel& lens = setup.lens;
+  const SequencePasses& want = setup.want;
+  const PassMask passes = setup.passes;
+  const RenderOptions& opt = setup.opt;
+  const EventCameraOptions& event_opt = setup.event_opt;
+  const KinectNoiseOptions& depth_noise = setup.depth_noise;
+  const std::vector<std::string>& formats = setup.formats;
+  const CameraPath& cam = prepared.cam;
+  const ImuOptions& imu = prepared.imu;
+  const std::optional<ImuSequence>& imu_seq = prepared.imu_seq;
+  const std::optional<PoseSpline>& spline = prepared.spline;
   const Scene& scene = c.scene;
   const Trajectory& traj = cam.frames;
   fs::path dir = fs::path(a.out) / layoutFolder(a, scene) / (a.sequence + c.suffix());
@@ -789,18 +806,6 @@ SequenceJobResult::Sequence renderSequence(
   return result;
 }
 
-/// What a job loads before its first frame: the scene, the camera path, every configuration's
-/// scene, the IMU and the event camera's spline.
-struct Prepared {
-  std::string key;
-  Scene scene;
-  CameraPath cam;
-  std::vector<SceneConfig> configs;
-  ImuOptions imu;
-  std::optional<ImuSequence> imu_seq;
-  std::optional<PoseSpline> spline;
-};
-
 /// Everything of a job that what Prepared holds depends on (a file by its size and time too).
 std::string preparedKey(const SequenceJob& a) {
   nlohmann::json k;
@@ -879,36 +884,31 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   const auto t0 = std::chrono::steady_clock::now();
   validateArgs(a);
   a.response.validate();
-  const LensType lens_type = a.lens.type();
-  CameraIntrinsics K = lensIntrinsics(a, lens_type);
+  JobSetup setup;
+  setup.lens_type = a.lens.type();
+  CameraIntrinsics K = lensIntrinsics(a, setup.lens_type);
   K.validate("generate");
-  const LensModel lens = a.lens.make(K, "generate");
-  const SequencePasses want = parseSequencePasses(a.passes, lens_type, a.readout_ms > 0);
-  PassMask passes = lensPasses(want.frame, lens_type);
-  if (a.hdr && !has(passes, Pass::Rgb)) throw InputError("", "--hdr", "needs the rgb pass");
+  setup.lens = a.lens.make(K, "generate");
+  setup.want = parseSequencePasses(a.passes, setup.lens_type, a.readout_ms > 0);
+  setup.passes = lensPasses(setup.want.frame, setup.lens_type);
+  if (a.hdr && !has(setup.passes, Pass::Rgb)) throw InputError("", "--hdr", "needs the rgb pass");
   if (!(a.stereo >= 0 && a.stereo <= 10))
     throw InputError("", "--stereo", "the baseline must be in 0..10 m");
-  const EventCameraOptions event_opt = a.events.options(a.seed);
-  const KinectNoiseOptions depth_noise;
-  std::vector<std::string> formats = splitList(a.formats);
+  setup.event_opt = a.events.options(a.seed);
+  setup.formats = splitCommaList(a.formats);
   // Load and check every input before anything is written; consecutive jobs of one sequence
   // (the dataset builder's frame ranges) share what they load
-  std::shared_ptr<const Prepared> prepared = preparedFor(a, want);
-  const Scene& scene = prepared->scene;
+  const std::shared_ptr<const Prepared> prepared = preparedFor(a, setup.want);
   const CameraPath& cam = prepared->cam;
-  const ImuOptions& imu = prepared->imu;
-  const std::optional<ImuSequence>& imu_seq = prepared->imu_seq;
-  const std::optional<PoseSpline>& spline = prepared->spline;
-  const std::vector<SceneConfig>& configs = prepared->configs;
   if (a.frame_begin >= cam.frames.size())
     throw InputError(cam.description, "frame range",
                      fmt::format("starts at frame {} but the camera path has {} frames",
                                  a.frame_begin, cam.frames.size()));
-  RenderOptions opt;
+  RenderOptions& opt = setup.opt;
   opt.spp = a.spp;
   opt.max_bounces = a.max_bounces;
   opt.seed = a.seed;
-  opt.passes = renderPassesFor(passes, lens_type, want.boxes);
+  opt.passes = renderPassesFor(setup.passes, setup.lens_type, setup.want.boxes);
   opt.denoise = a.denoise;
   opt.light_cache = a.light_cache;
   opt.sun_photons = a.sun_photons;
@@ -916,14 +916,13 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   SequenceJobResult result;
   const auto t1 = std::chrono::steady_clock::now();
   result.setup_s = std::chrono::duration<double>(t1 - t0).count();
-  for (const SceneConfig& c : configs)
-    result.sequences.push_back(renderSequence(a, c, cam, lens, lens_type, want, passes, opt, imu,
-                                              imu_seq, spline, event_opt, depth_noise, formats));
+  for (const SceneConfig& c : prepared->configs)
+    result.sequences.push_back(renderSequence(a, c, setup, *prepared));
   result.sequences_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if (!a.contact_sheet.empty() && result.sequences.front().finished)
-    writeSequenceSheet(
-        fs::path(a.out) / layoutFolder(a, scene) / (a.sequence + configs.front().suffix()),
-        a.contact_sheet);
+    writeSequenceSheet(fs::path(a.out) / layoutFolder(a, prepared->scene) /
+                           (a.sequence + prepared->configs.front().suffix()),
+                       a.contact_sheet);
   return result;
 }
 

@@ -28,6 +28,17 @@ namespace inet {
 
 namespace {
 
+/// The apartment of `opt` named `name`, its textures in `dir` (kept: the renderer reads them
+/// there). They are written atomically and depend on the options alone, so jobs of the same
+/// apartment in parallel and a job stopped half-way leave whole files.
+Scene cachedApartment(const ApartmentOptions& opt, const std::filesystem::path& dir,
+                      const std::string& name) {
+  if (opt.furniture != FurnitureSource::Parametric) installCatalogResolver();
+  Scene s = makeApartment(opt, dir, dir / "textures").scene;
+  s.name = name;
+  return s;
+}
+
 /// The apartment of a "procedural:<seed>" source; its textures are made once per machine.
 Scene proceduralApartment(const SceneSource& src) {
   const std::string digits = src.path.substr(std::string("procedural:").size());
@@ -40,20 +51,14 @@ Scene proceduralApartment(const SceneSource& src) {
   opt.seed = std::stoull(digits);
   opt.rooms = src.rooms;
   opt.furniture = src.furniture.empty() ? (catalogsAvailable() ? FurnitureSource::Catalog
-                                                                 : FurnitureSource::Parametric)
+                                                               : FurnitureSource::Parametric)
                                         : parseFurnitureSource(src.furniture, "furniture");
-  if (opt.furniture != FurnitureSource::Parametric) {
-    catalogLibrary();  // a clear error without the catalogs
-    installCatalogResolver();
-  }
-  // written atomically: jobs of the same apartment in parallel and a job stopped half-way leave
-  // whole files, and the textures depend on the options alone
-  const std::filesystem::path dir =
-      userCacheDir("procedural") / fmt::format("seed{}_rooms{}_{}", opt.seed, opt.rooms,
-                                               furnitureSourceName(opt.furniture));
-  Scene s = makeApartment(opt, dir, dir / "textures").scene;
-  s.name = fmt::format("procedural_{}", opt.seed);
-  return s;
+  if (opt.furniture != FurnitureSource::Parametric) catalogLibrary();  // a clear error without
+  return cachedApartment(
+      opt,
+      userCacheDir("procedural") /
+          fmt::format("seed{}_rooms{}_{}", opt.seed, opt.rooms, furnitureSourceName(opt.furniture)),
+      fmt::format("procedural_{}", opt.seed));
 }
 
 }  // namespace
@@ -180,14 +185,9 @@ Scene builtinApartment() {
   opt.seed = kBuiltinApartmentSeed;
   opt.rooms = 4;
   opt.furniture = FurnitureSource::Catalog;
-  installCatalogResolver();
-  // the procedural textures stay where the renderer reads them; written atomically, so runs in
-  // parallel and a run stopped half-way leave whole files
-  const std::filesystem::path dir =
-      userCacheDir("builtin") / fmt::format("apartment_seed{}", kBuiltinApartmentSeed);
-  Scene s = makeApartment(opt, dir, dir / "textures").scene;
-  s.name = "apartment";
-  return s;
+  return cachedApartment(
+      opt, userCacheDir("builtin") / fmt::format("apartment_seed{}", kBuiltinApartmentSeed),
+      "apartment");
 }
 
 void ResponseSettings::validate() const {
