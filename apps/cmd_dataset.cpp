@@ -123,7 +123,8 @@ void registerDataset(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "dataset",
       "Build a dataset: a spec (docs/dataset.md) into a plan of layouts, sequences, sparse views "
-      "and splits, then its work units into sequence folders, resumably (docs/dataset.md)");
+      "and splits, then its work units into sequence folders, resumably; stats charts what a build "
+      "holds (docs/dataset.md)");
   cmd->require_subcommand(1);
 
   auto plan = std::make_shared<PlanArgs>();
@@ -169,6 +170,7 @@ void registerDataset(CLI::App& app) {
                 "when they were written");
   v->add_option("DIR", verify->dir, "the build folder")->required();
   v->callback([verify] { runVerify(*verify); });
+  registerDatasetStats(*cmd);
 }
 
 }  // namespace inet::app

@@ -55,6 +55,8 @@ void registerVary(CLI::App& app);
 void registerDenoiser(CLI::App& app);
 void registerAssets(CLI::App& app);
 void registerDataset(CLI::App& app);
+/// `dataset stats` (cmd_dataset_stats.cpp), added to the `dataset` command by registerDataset.
+void registerDatasetStats(CLI::App& dataset_cmd);
 
 /// Replaces this process with the companion executable `tool` from this binary's folder (the
 /// LibTorch tools: interiornet-train-style, interiornet-train-denoiser), as `tool subcommand
