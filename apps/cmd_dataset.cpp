@@ -171,6 +171,7 @@ void registerDataset(CLI::App& app) {
   v->add_option("DIR", verify->dir, "the build folder")->required();
   v->callback([verify] { runVerify(*verify); });
   registerDatasetStats(*cmd);
+  registerDatasetShards(*cmd);
 }
 
 }  // namespace inet::app

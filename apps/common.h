@@ -57,6 +57,8 @@ void registerAssets(CLI::App& app);
 void registerDataset(CLI::App& app);
 /// `dataset stats` (cmd_dataset_stats.cpp), added to the `dataset` command by registerDataset.
 void registerDatasetStats(CLI::App& dataset_cmd);
+/// `dataset shards` (cmd_dataset_shards.cpp), added to the `dataset` command by registerDataset.
+void registerDatasetShards(CLI::App& dataset_cmd);
 
 /// Replaces this process with the companion executable `tool` from this binary's folder (the
 /// LibTorch tools: interiornet-train-style, interiornet-train-denoiser), as `tool subcommand

@@ -17,6 +17,7 @@ PACKAGES=(
   libtinygltf-dev
   libzip-dev sweethome3d-furniture libgeos-dev
   libsqlite3-dev libopenmpi-dev openmpi-bin
+  libarchive-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "builder/shards.h"
 #include "builder/unit_runner.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -193,7 +194,21 @@ void Coordinator::record(int64_t order, int rank, const UnitResult& result) {
 
 BuildReport Coordinator::finish(int workers) {
   bar_->finish();
-  writeManifestIfComplete(folder_);
+  // the shards hold the manifest's rows, so they follow it; a rerun of a complete build finds
+  // them whole and rewrites none
+  if (writeManifestIfComplete(folder_) && folder_.plan().spec.shards.enabled) {
+    ShardOptions so = shardOptions(folder_.plan().spec);
+    so.progress = opt_.progress;
+    const ShardReport r = writeShards(folder_.root(), so);
+    size_t shards = 0;
+    for (const auto& [split, list] : r.splits) shards += list.size();
+    std::fprintf(stderr,
+                 "%zu shard(s) of %lld samples in %s: %.1f MB written, %.1f MB unchanged "
+                 "(%.1f s)\n",
+                 shards, static_cast<long long>(r.samples),
+                 (folder_.root() / "shards").string().c_str(), r.bytes_written / 1e6,
+                 (r.bytes - r.bytes_written) / 1e6, r.seconds);
+  }
   const StateCounts c = folder_.state().counts();
   report_.pending_after = c.units[static_cast<int>(UnitState::Pending)];
   report_.failed_total = c.units[static_cast<int>(UnitState::Failed)];

@@ -399,6 +399,35 @@ StorageSpec parseStorage(const Reader& r, const Value& v) {
   return s;
 }
 
+/// `shards`: pass keys are checked for form only here; which exist depends on the passes,
+/// formats and storage, and `dataset shards` checks them against the manifest.
+ShardsSpec parseShards(const Reader& r, const Value& v) {
+  ShardsSpec s;
+  const auto m = r.map(v, {"enabled", "max_mb", "passes"});
+  with(m, "enabled", [&](const Value& x) { s.enabled = r.boolean(x); });
+  with(m, "max_mb", [&](const Value& x) { s.max_mb = r.number(x, 0.001, 1e7); });
+  with(m, "passes", [&](const Value& x) {
+    s.passes.clear();
+    for (const Value& item : r.list(x)) {
+      const std::string p = r.string(item);
+      const bool plain = !p.empty() && p[0] != '.' && std::all_of(p.begin(), p.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+      if (!plain)
+        r.fail(item, "'" + p +
+                         "' is not a pass key of the manifest (e.g. cam0, depth0.exr, "
+                         "label0_nyu) or all");
+      if (std::find(s.passes.begin(), s.passes.end(), p) != s.passes.end())
+        r.fail(item, "'" + p + "' is listed twice");
+      s.passes.push_back(p);
+    }
+    if (s.passes.empty()) r.fail(x, "no pass key given (e.g. [all] or [cam0, depth0])");
+    if (s.passes.size() > 1 && std::count(s.passes.begin(), s.passes.end(), "all"))
+      r.fail(x, "'all' stands alone: it already holds every pass key");
+  });
+  return s;
+}
+
 DatasetSpec parseRoot(const Reader& r, const YAML::Node& root, const fs::path& base) {
   const Value top{root, "", root.IsNull() ? 0 : lineOf(root, 1)};
   if (!root.IsMap())
@@ -407,7 +436,7 @@ DatasetSpec parseRoot(const Reader& r, const YAML::Node& root, const fs::path& b
                               : "expected a map of keys at the top, got " + describe(root));
   // the version first: a future version may have other keys, and saying so is the better error
   const Keys keys = {"version", "name",   "seed",   "layouts", "splits",  "sequences", "sparse",
-                     "camera",  "render", "passes", "imu",     "formats", "storage"};
+                     "camera",  "render", "passes", "imu",     "formats", "storage",   "shards"};
   for (auto it = root.begin(); it != root.end(); ++it) {
     if (!it->first.IsScalar() || it->first.Scalar() != "version") continue;
     const Value v{it->second, "version", lineOf(it->second, lineOf(it->first, 0))};
@@ -456,6 +485,7 @@ DatasetSpec parseRoot(const Reader& r, const YAML::Node& root, const fs::path& b
     if (s.formats.empty()) r.fail(x, "no format given (asl, tum)");
   });
   with(m, "storage", [&](const Value& x) { s.storage = parseStorage(r, x); });
+  with(m, "shards", [&](const Value& x) { s.shards = parseShards(r, x); });
   // what the sequence writer would refuse in every unit of the build, said once here: TUM
   // folders pair colour with depth images
   auto has = [&](const char* pass) {
@@ -517,7 +547,7 @@ bool DatasetSpec::operator==(const DatasetSpec& o) const {
   return version == o.version && name == o.name && seed == o.seed && layouts == o.layouts &&
          splits == o.splits && sequences == o.sequences && sparse == o.sparse &&
          camera == o.camera && render == o.render && passes == o.passes && imu == o.imu &&
-         formats == o.formats && storage == o.storage;
+         formats == o.formats && storage == o.storage && shards == o.shards;
 }
 
 uint64_t stableHash64(std::string_view bytes) {
@@ -601,6 +631,8 @@ nlohmann::ordered_json specToJson(const DatasetSpec& s) {
   j["storage"] = {{"exr_compression", s.storage.exr_compression},
                   {"png_level", s.storage.png_level},
                   {"flow", s.storage.flow}};
+  j["shards"] = {
+      {"enabled", s.shards.enabled}, {"max_mb", s.shards.max_mb}, {"passes", s.shards.passes}};
   return j;
 }
 

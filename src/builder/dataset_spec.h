@@ -135,6 +135,17 @@ struct StorageSpec {
   bool operator==(const StorageSpec&) const = default;
 };
 
+/// Optional WebDataset tar shards of the built dataset (builder/shards.h), written by `dataset
+/// build` right after manifest.jsonl when enabled; `dataset shards DIR` writes them on demand
+/// with these settings as defaults.
+struct ShardsSpec {
+  bool enabled = false;
+  double max_mb = 1024;  ///< a shard's bound in MB (10^6 bytes) of tar, in [0.001, 10^7]
+  /// Pass keys of the manifest's "files" (cam0, depth0.exr, label0_nyu, ...), or [all]
+  std::vector<std::string> passes = {"all"};
+  bool operator==(const ShardsSpec&) const = default;
+};
+
 struct DatasetSpec {
   std::string file;      ///< where it was read from (for messages and the plan's header)
   std::string checksum;  ///< specChecksum() of the text it was read from
@@ -151,6 +162,7 @@ struct DatasetSpec {
   double imu = 800.0;                             ///< IMU rate (Hz), 0 = no IMU
   std::vector<std::string> formats = {"asl", "tum"};
   StorageSpec storage;
+  ShardsSpec shards;
   /// Equal content (file and checksum are provenance and not compared).
   bool operator==(const DatasetSpec& o) const;
 };

@@ -72,6 +72,9 @@ TEST(DatasetSpec, DefaultsFillEveryKey) {
   EXPECT_EQ(s.storage.exr_compression, "zip");
   EXPECT_EQ(s.storage.png_level, 1);
   EXPECT_EQ(s.storage.flow, "both");
+  EXPECT_FALSE(s.shards.enabled);  // WebDataset shards only when asked for
+  EXPECT_EQ(s.shards.max_mb, 1024.0);
+  EXPECT_EQ(s.shards.passes, std::vector<std::string>{"all"});
   EXPECT_EQ(s.file, kFile);
   EXPECT_EQ(s.checksum, specChecksum(kMinimal));
 }
@@ -264,6 +267,30 @@ TEST(DatasetSpec, PassesAndFormats) {
   EXPECT_EQ(parse(kMinimal + "passes: [depth, label]\nformats: [asl]\n").formats.size(), 1u);
 }
 
+TEST(DatasetSpec, Shards) {
+  const DatasetSpec s =
+      parse(kMinimal + "shards: {enabled: true, max_mb: 0.05, passes: [cam0, depth0.exr]}\n");
+  EXPECT_TRUE(s.shards.enabled);
+  EXPECT_EQ(s.shards.max_mb, 0.05);
+  EXPECT_EQ(s.shards.passes, (std::vector<std::string>{"cam0", "depth0.exr"}));
+  EXPECT_EQ(parse(kMinimal + "shards: {enabled: true}\n").shards.passes,
+            std::vector<std::string>{"all"});
+  InputError e = errorOf(kMinimal + "shards: {enable: true}\n");
+  EXPECT_EQ(e.field(), "shards.enable (line 4)");
+  EXPECT_NE(e.problem().find("enabled, max_mb, passes"), std::string::npos) << e.what();
+  EXPECT_EQ(errorOf(kMinimal + "shards: {enabled: yes}\n").field(), "shards.enabled (line 4)");
+  EXPECT_EQ(errorOf(kMinimal + "shards: {max_mb: 0}\n").field(), "shards.max_mb (line 4)");
+  EXPECT_EQ(errorOf(kMinimal + "shards: {max_mb: \"64\"}\n").field(), "shards.max_mb (line 4)");
+  EXPECT_EQ(errorOf(kMinimal + "shards:\n  passes: [cam0, cam0]\n").field(),
+            "shards.passes[1] (line 5)");
+  EXPECT_EQ(errorOf(kMinimal + "shards: {passes: [cam0/x]}\n").field(),
+            "shards.passes[0] (line 4)");
+  EXPECT_EQ(errorOf(kMinimal + "shards: {passes: []}\n").field(), "shards.passes (line 4)");
+  e = errorOf(kMinimal + "shards: {passes: [all, cam0]}\n");
+  EXPECT_EQ(e.field(), "shards.passes (line 4)");
+  EXPECT_NE(e.problem().find("'all' stands alone"), std::string::npos) << e.what();
+}
+
 TEST(DatasetSpec, JsonSpecReadsAsItsYaml) {
   const std::string json = R"({
   "version": 1, "name": "tiny", "seed": 5,
@@ -313,6 +340,7 @@ passes: [rgb, depth, imu, boxes]
 imu: 200.5
 formats: [tum]
 storage: {exr_compression: piz, png_level: 6, flow: kitti}
+shards: {enabled: true, max_mb: 2.5, passes: [cam0, label0_nyu, depth0.exr]}
 )");
   EXPECT_EQ(s.layouts.folders[1].resolved, std::filesystem::path("/shared/more"));
   EXPECT_EQ(s.layouts.front3d[0].resolved, std::filesystem::path("/specs/houses/a.json"));
