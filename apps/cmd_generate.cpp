@@ -135,6 +135,34 @@ void registerGenerate(CLI::App& app) {
   cmd->add_flag("--hdr", a->hdr,
                 "also write the linear RGB radiance (before exposure, noise, tone curve, sRGB) as "
                 "float32 EXR, channels R G B: cam0/data/<t>.exr next to the PNG");
+  cmd->add_flag_function(
+      "--hdr-half",
+      [a](int64_t) {
+        a->hdr = true;
+        a->storage.rgb_exr_half = true;
+      },
+      "as --hdr in 16-bit half floats (11 significant bits, about half the bytes): exact enough "
+      "for rendered radiance, whose noise is larger");
+  cmd->add_option_function<int>(
+      "--png-level",
+      [a](int level) {
+        if (level < 0 || level > 9) throw InputError("", "--png-level", "must be 0..9");
+        a->storage.png_level = level;
+      },
+      "zlib level of every PNG, 0..9: all lossless, higher = smaller and slower (default 1; "
+      "docs/output.md section 9 has the measured trade)");
+  cmd->add_option_function<std::string>(
+      "--exr-compression",
+      [a](const std::string& v) {
+        a->storage.exr = parseExrCompression(v, "", "--exr-compression");
+      },
+      "lossless compression of every EXR: none, rle, zips, zip, piz (default zip)");
+  cmd->add_option_function<std::string>(
+      "--flow-files",
+      [a](const std::string& v) { parseFlowFiles(v, a->storage, "", "--flow-files"); },
+      "which files hold the optical flow: flo (Middlebury float32), kitti (16-bit PNG, 1/64 px "
+      "steps), exr (float32 U V, compressed: exact like .flo at a fraction of its size), joined "
+      "by '+', or both = flo+kitti (default both)");
   cmd->add_flag("--denoise,!--no-denoise", a->denoise,
                 "denoise the RGB pass (edge-aware, guided by albedo/normal/depth; ground truth is "
                 "never filtered; docs/denoise.md). On by default: it trades a little bias for "

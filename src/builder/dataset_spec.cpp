@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "dataset/format_writer.h"
 #include "render/frame.h"
 
 namespace fs = std::filesystem;
@@ -389,13 +390,23 @@ std::vector<std::string> parsePasses(const Reader& r, const Value& v, const Came
 
 StorageSpec parseStorage(const Reader& r, const Value& v) {
   StorageSpec s;
-  const auto m = r.map(v, {"exr_compression", "png_level", "flow"});
+  const auto m = r.map(v, {"exr_compression", "png_level", "flow", "rgb_exr"});
   // only OpenEXR's lossless codecs: pxr24, b44 and dwa would change float ground truth
   with(m, "exr_compression", [&](const Value& x) {
     s.exr_compression = r.choice(x, {"none", "rle", "zips", "zip", "piz"});
   });
   with(m, "png_level", [&](const Value& x) { s.png_level = r.integer(x, 0, 9); });
-  with(m, "flow", [&](const Value& x) { s.flow = r.choice(x, {"flo", "kitti", "both"}); });
+  with(m, "flow", [&](const Value& x) {
+    s.flow = r.string(x);
+    StorageOptions o;  // the sequence writer's own reading of the list, so both agree
+    try {
+      parseFlowFiles(s.flow, o, "", "");
+    } catch (const InputError&) {
+      r.fail(x, "'" + s.flow + "' is not a list of flow files (flo, kitti, exr joined by '+', "
+                "or both = flo+kitti)");
+    }
+  });
+  with(m, "rgb_exr", [&](const Value& x) { s.rgb_exr = r.choice(x, {"none", "float", "half"}); });
   return s;
 }
 
@@ -630,7 +641,8 @@ nlohmann::ordered_json specToJson(const DatasetSpec& s) {
   j["formats"] = s.formats;
   j["storage"] = {{"exr_compression", s.storage.exr_compression},
                   {"png_level", s.storage.png_level},
-                  {"flow", s.storage.flow}};
+                  {"flow", s.storage.flow},
+                  {"rgb_exr", s.storage.rgb_exr}};
   j["shards"] = {
       {"enabled", s.shards.enabled}, {"max_mb", s.shards.max_mb}, {"passes", s.shards.passes}};
   return j;

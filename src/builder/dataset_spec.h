@@ -131,7 +131,12 @@ struct RenderSpec {
 struct StorageSpec {
   std::string exr_compression = "zip";  ///< none, rle, zips, zip, piz
   int png_level = 1;                    ///< zlib level 0..9
-  std::string flow = "both";            ///< flo (Middlebury), kitti (16-bit PNG) or both
+  /// flo (Middlebury float32), kitti (16-bit PNG, 1/64 px: not exact), exr (float32 U V,
+  /// compressed), joined by '+', or both (= flo+kitti)
+  std::string flow = "both";
+  /// The linear radiance cam0/data/<t>.exr next to the colour PNG: none, float (32-bit) or
+  /// half (16-bit: exact enough for rendered radiance, about half the bytes)
+  std::string rgb_exr = "none";
   bool operator==(const StorageSpec&) const = default;
 };
 

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/text.h"
 
 namespace inet {
@@ -65,6 +66,12 @@ SequenceJob baseJob(const DatasetPlan& plan, const PlannedLayout& layout, const 
   job.passes = joinCommaList(spec.passes);
   job.formats = joinCommaList(spec.formats);
   job.imu_rate = spec.imu;
+  job.storage.png_level = spec.storage.png_level;
+  job.storage.exr = parseExrCompression(spec.storage.exr_compression, spec.file,
+                                        "storage.exr_compression");
+  parseFlowFiles(spec.storage.flow, job.storage, spec.file, "storage.flow");
+  job.hdr = spec.storage.rgb_exr != "none";
+  job.storage.rgb_exr_half = spec.storage.rgb_exr == "half";
   job.progress = false;
   return job;
 }
@@ -150,6 +157,21 @@ std::string passKey(const fs::path& rel) {
   return key;
 }
 
+/// The credits of the catalog pieces an instance image shows, in piece-id order, each once.
+nlohmann::ordered_json assetsInView(const ImageU16& instance,
+                                    const std::map<int, AssetCredit>& credits) {
+  std::vector<uint8_t> seen(65536, 0);
+  for (uint16_t id : instance.data) seen[id] = 1;
+  std::map<std::string, const AssetCredit*> shown;
+  for (const auto& [id, credit] : credits)
+    if (id >= 0 && id < 65536 && seen[static_cast<size_t>(id)]) shown[credit.id] = &credit;
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [piece, c] : shown)
+    out.push_back({{"id", c->id}, {"name", c->name}, {"creator", c->creator},
+                   {"license", c->license}});
+  return out;
+}
+
 }  // namespace
 
 UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
@@ -190,6 +212,13 @@ UnitOutput runUnit(const DatasetPlan& plan, const WorkUnit& unit, int64_t order,
           files[passKey(fs::path(f).lexically_relative(seq.dir))] =
               fs::path(f).lexically_relative(root).generic_string();
         row["files"] = std::move(files);
+        // the catalog pieces in view, with their credits, where the instance image says
+        for (const std::string& f : frame.files) {
+          const fs::path rel = fs::path(f).lexically_relative(seq.dir);
+          if (rel.begin()->string() != "label0" || !rel.string().ends_with("_instance.png"))
+            continue;
+          row["assets"] = assetsInView(readPng16(f), seq.assets);
+        }
         manifest += row.dump() + "\n";
       }
       out.finished_sequence |= seq.finished && unit.kind == UnitKind::Sequence;

@@ -35,6 +35,8 @@ std::vector<SequenceJob> jobsOf(const DatasetPlan& plan, const WorkUnit& unit,
 /// w_mult, frame, t_ns and files {pass key: path relative to the build folder}. A pass key is
 /// the file's folder in the sequence (cam0, depth0, rgb, ...), with the name's suffix after
 /// '_' (label0_nyu, label0_instance) and the extension when it is not .png (cam0.exr, flow0.flo).
+/// With the instance pass, a row also has `assets`: the Sweet Home 3D catalog pieces the frame
+/// shows ({id, name, creator, license}, in id order; [] for parametric furniture).
 /// Written by runUnit to manifest/units/<order, 8 digits>.jsonl; `dataset build` joins them
 /// into manifest.jsonl in plan order when every unit is done.
 std::filesystem::path unitManifestPath(const std::filesystem::path& root, int64_t order);

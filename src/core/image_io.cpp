@@ -12,6 +12,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <Imath/half.h>
 
 #include <bit>
 #include <cerrno>
@@ -38,7 +39,6 @@ namespace {
 // (one subtraction per byte), beat SUB on every pass and was within 3% of the smallest single
 // filter; adaptive filtering cost 1.25-5x the time for 1-3% smaller files. Higher levels
 // shrink colour, most of the bytes, by under 2%.
-constexpr int kPngZlibLevel = 1;
 constexpr int kPngFilter = PNG_FILTER_UP;
 
 /// The error_ptr handed to libpng: the message of the first error, then longjmp.
@@ -71,6 +71,7 @@ struct PngHandle {
 struct PngLayout {
   int width = 0, height = 0, channels = 0, bit_depth = 0;
   const uint8_t* pixels = nullptr;  ///< rows top to bottom, tightly packed
+  int zlib_level = kDefaultPngLevel;  ///< writing only
 };
 
 // The functions that call setjmp hold no object with a destructor, so libpng's longjmp back into
@@ -83,7 +84,7 @@ bool encodePng(PngHandle& h, const PngLayout& l) {
   png_set_IHDR(h.png, h.info, static_cast<png_uint_32>(l.width), static_cast<png_uint_32>(l.height),
                l.bit_depth, color, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(h.png, kPngZlibLevel);
+  png_set_compression_level(h.png, l.zlib_level);
   png_set_filter(h.png, PNG_FILTER_TYPE_BASE, kPngFilter);
   png_write_info(h.png, h.info);
   if (l.bit_depth == 16 && std::endian::native == std::endian::little) png_set_swap(h.png);
@@ -98,6 +99,8 @@ void writePngAny(const fs::path& path, const PngLayout& l) {
     throw InputError(path.string(), "",
                      "PNG writer takes 1 or 3 channels, image has " + std::to_string(l.channels));
   if (l.width < 1 || l.height < 1) throw InputError(path.string(), "", "image is empty");
+  if (l.zlib_level < 0 || l.zlib_level > 9)
+    throw InputError(path.string(), "png level", "must be 0..9, not " + std::to_string(l.zlib_level));
   writeFileAtomic(path, [&](const fs::path& tmp) {
     PngHandle h;
     h.writing = true;
@@ -292,15 +295,15 @@ void checkChannelNames(const fs::path& path, const std::vector<std::string>& nam
 
 }  // namespace
 
-void writePng(const fs::path& path, const ImageU8& img) {
+void writePng(const fs::path& path, const ImageU8& img, int zlib_level) {
   INET_CHECK(img.data.size() == img.pixelCount() * img.channels);
-  writePngAny(path, {img.width, img.height, img.channels, 8, img.data.data()});
+  writePngAny(path, {img.width, img.height, img.channels, 8, img.data.data(), zlib_level});
 }
 
-void writePng(const fs::path& path, const ImageU16& img) {
+void writePng(const fs::path& path, const ImageU16& img, int zlib_level) {
   INET_CHECK(img.data.size() == img.pixelCount() * img.channels);
   writePngAny(path, {img.width, img.height, img.channels, 16,
-                     reinterpret_cast<const uint8_t*>(img.data.data())});
+                     reinterpret_cast<const uint8_t*>(img.data.data()), zlib_level});
 }
 
 ImageU8 readPng8(const fs::path& path) {
@@ -357,8 +360,28 @@ void writeJpeg(const fs::path& path, const ImageU8& img, int quality) {
   });
 }
 
+const char* exrCompressionName(ExrCompression c) {
+  switch (c) {
+    case ExrCompression::None: return "none";
+    case ExrCompression::Rle: return "rle";
+    case ExrCompression::Zips: return "zips";
+    case ExrCompression::Zip: return "zip";
+    case ExrCompression::Piz: return "piz";
+  }
+  return "zip";
+}
+
+ExrCompression parseExrCompression(const std::string& name, const std::string& file,
+                                   const std::string& field) {
+  for (ExrCompression c : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips,
+                           ExrCompression::Zip, ExrCompression::Piz})
+    if (name == exrCompressionName(c)) return c;
+  throw InputError(file, field,
+                   "'" + name + "' is not a lossless EXR compression (none, rle, zips, zip, piz)");
+}
+
 void writeExr(const fs::path& path, const ImageF& img,
-              const std::vector<std::string>& channel_names) {
+              const std::vector<std::string>& channel_names, const ExrOptions& options) {
   INET_CHECK(img.data.size() == img.pixelCount() * img.channels);
   if (static_cast<int>(channel_names.size()) != img.channels)
     throw InputError(path.string(), "",
@@ -369,16 +392,29 @@ void writeExr(const fs::path& path, const ImageF& img,
   writeFileAtomic(path, [&](const fs::path& tmp) {
     try {
       Imf::Header header(img.width, img.height);
-      header.compression() = Imf::ZIP_COMPRESSION;
+      switch (options.compression) {
+        case ExrCompression::None: header.compression() = Imf::NO_COMPRESSION; break;
+        case ExrCompression::Rle: header.compression() = Imf::RLE_COMPRESSION; break;
+        case ExrCompression::Zips: header.compression() = Imf::ZIPS_COMPRESSION; break;
+        case ExrCompression::Zip: header.compression() = Imf::ZIP_COMPRESSION; break;
+        case ExrCompression::Piz: header.compression() = Imf::PIZ_COMPRESSION; break;
+      }
       header.zipCompressionLevel() = 4;  // fixed, so a library default change cannot alter bytes
+      // OpenEXR writes a channel only from a slice of its own type: half samples are converted
+      // here (Imath's float -> half rounds to nearest even)
+      std::vector<half> halves;
+      if (options.half) halves.assign(img.data.begin(), img.data.end());
+      const Imf::PixelType stored = options.half ? Imf::HALF : Imf::FLOAT;
       Imf::FrameBuffer fb;
-      const size_t xs = sizeof(float) * img.channels;
+      const size_t xs = (options.half ? sizeof(half) : sizeof(float)) * img.channels;
       const size_t ys = xs * img.width;
       for (int c = 0; c < img.channels; ++c) {
-        header.channels().insert(channel_names[c], Imf::Channel(Imf::FLOAT));
+        header.channels().insert(channel_names[c], Imf::Channel(stored));
         // OpenEXR only reads through this pointer when writing.
-        char* base = reinterpret_cast<char*>(const_cast<float*>(img.data.data() + c));
-        fb.insert(channel_names[c], Imf::Slice(Imf::FLOAT, base, xs, ys));
+        char* base = options.half
+                         ? reinterpret_cast<char*>(halves.data() + c)
+                         : reinterpret_cast<char*>(const_cast<float*>(img.data.data() + c));
+        fb.insert(channel_names[c], Imf::Slice(stored, base, xs, ys));
       }
       // No worker threads: the caller parallelises over files and frames.
       Imf::OutputFile out(tmp.c_str(), header, 0);

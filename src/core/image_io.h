@@ -19,11 +19,17 @@
 
 namespace inet {
 
-/// Writes an 8-bit PNG: 1 channel = grey, 3 channels = RGB.
-void writePng(const std::filesystem::path& path, const ImageU8& img);
+/// The zlib level the PNG writers use unless told otherwise (image_io.cpp says why 1).
+inline constexpr int kDefaultPngLevel = 1;
+
+/// Writes an 8-bit PNG: 1 channel = grey, 3 channels = RGB. `zlib_level` 0..9 (0 = stored, 9 =
+/// smallest): every level is lossless, higher ones only trade time for bytes.
+void writePng(const std::filesystem::path& path, const ImageU8& img,
+              int zlib_level = kDefaultPngLevel);
 /// Writes a 16-bit PNG: 1 channel = grey, 3 channels = RGB. Samples are stored big-endian as the
 /// PNG standard requires; the caller passes native uint16 values.
-void writePng(const std::filesystem::path& path, const ImageU16& img);
+void writePng(const std::filesystem::path& path, const ImageU16& img,
+              int zlib_level = kDefaultPngLevel);
 
 /// Reads an 8-bit PNG. Palette images are expanded to RGB and grey images below 8 bits to 8 bits;
 /// an alpha channel is kept (2 or 4 channels). A 16-bit file is an error (use readPng16): depth
@@ -48,11 +54,31 @@ Eigen::Vector3d meanLinearRgb(const std::filesystem::path& path);
 /// unwritable file.
 void writeJpeg(const std::filesystem::path& path, const ImageU8& img, int quality = 90);
 
-/// Writes a scanline EXR with one 32-bit FLOAT channel per entry of `channel_names` (their count
-/// must equal img.channels), ZIP compression (16 scanlines per block). EXR stores channels sorted
-/// by name; readExr puts them back in the order asked for. Typical names: {"Z"}, {"R","G","B"}.
+/// The lossless EXR compressions (OpenEXR's lossy B44, DWA and PXR24 are left out on purpose:
+/// ground truth must read back exactly). Zip: deflate over 16 scanlines (the default); Zips: one
+/// scanline per block; Piz: wavelet + Huffman, often smallest on noisy colour; Rle: run lengths.
+enum class ExrCompression { None, Rle, Zips, Zip, Piz };
+/// "none", "rle", "zips", "zip", "piz".
+const char* exrCompressionName(ExrCompression c);
+/// The compression of a name as exrCompressionName gives it; InputError(file, field) otherwise,
+/// listing the valid names.
+ExrCompression parseExrCompression(const std::string& name, const std::string& file,
+                                   const std::string& field);
+
+struct ExrOptions {
+  ExrCompression compression = ExrCompression::Zip;
+  /// Store 16-bit HALF samples instead of 32-bit FLOAT: 11 significant bits (relative error
+  /// <= 2^-11, values up to 65504). Exact enough for rendered radiance, whose Monte Carlo noise
+  /// is far larger; never for depth or flow, which are ground truth.
+  bool half = false;
+};
+
+/// Writes a scanline EXR with one channel per entry of `channel_names` (their count must equal
+/// img.channels), by default 32-bit FLOAT with ZIP compression (16 scanlines per block). EXR
+/// stores channels sorted by name; readExr puts them back in the order asked for. Typical
+/// names: {"Z"}, {"R","G","B"}.
 void writeExr(const std::filesystem::path& path, const ImageF& img,
-              const std::vector<std::string>& channel_names);
+              const std::vector<std::string>& channel_names, const ExrOptions& options = {});
 /// Reads the named channels of an EXR (any pixel type, converted to float) into an image with
 /// channel_names.size() channels in that order. A missing channel is an InputError listing those
 /// present.

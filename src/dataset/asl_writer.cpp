@@ -41,11 +41,13 @@ constexpr AslSensor kImageSensors[] = {
     {"flow0",
      "interiornet flow0, registered to cam0. Forward optical flow to the next frame (none for the "
      "last), pixels. <t>.flo Middlebury float32 (1e10 = no surface), <t>.png KITTI 16-bit "
-     "(64 u + 32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = occluded in the next frame"},
+     "(64 u + 32768, 64 v + 32768, valid), <t>.exr float32 U V (NaN = no surface), as many of "
+     "the three as meta.json storage.flow names; <t>_occ.png 8-bit, 255 = occluded in the next frame"},
     {"flow0_bwd",
      "interiornet flow0_bwd, registered to cam0. Backward optical flow to the previous frame "
      "(none for the first), pixels. <t>.flo Middlebury float32 (1e10 = no surface), <t>.png "
-     "KITTI 16-bit (64 u + 32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = occluded in "
+     "KITTI 16-bit (64 u + 32768, 64 v + 32768, valid), <t>.exr float32 U V (NaN = no surface), "
+     "as many of the three as meta.json storage.flow names; <t>_occ.png 8-bit, 255 = occluded in "
      "the previous frame"},
 };
 
@@ -163,12 +165,14 @@ class AslWriter final : public FormatWriter {
     addOutput("label0/data", "_nyu.png", rawPng(Pass::Label));
     addOutput("label0/data", "_instance.png", rawPng(Pass::Instance));
     addOutput("depth0_noisy/data", ".png", depthPng(Pass::DepthNoisy, kDepthScaleMm));
-    addOutput("flow0/data", ".flo", flowFlo(Pass::Flow));
-    addOutput("flow0/data", ".png", flowKittiPng(Pass::Flow));
-    addOutput("flow0/data", "_occ.png", flowOcclusionPng(Pass::Flow));
-    addOutput("flow0_bwd/data", ".flo", flowFlo(Pass::FlowBackward));
-    addOutput("flow0_bwd/data", ".png", flowKittiPng(Pass::FlowBackward));
-    addOutput("flow0_bwd/data", "_occ.png", flowOcclusionPng(Pass::FlowBackward));
+    const StorageOptions& st = ctx().spec.storage;
+    for (const auto& [folder, pass] : {std::pair{"flow0/data", Pass::Flow},
+                                       std::pair{"flow0_bwd/data", Pass::FlowBackward}}) {
+      if (st.flow_flo) addOutput(folder, ".flo", flowFlo(pass));
+      if (st.flow_kitti) addOutput(folder, ".png", flowKittiPng(pass));
+      if (st.flow_exr) addOutput(folder, ".exr", flowExr(pass));
+      addOutput(folder, "_occ.png", flowOcclusionPng(pass));
+    }
     if (ctx().spec.stereo_baseline_m > 0) {
       // cam1 writes every output of cam0 into the twin folder (cam0 -> cam1, depth0 -> depth1)
       const std::vector<FrameOutput> left = outputs();

@@ -12,7 +12,8 @@
 //   label0/data/<t>_nyu.png  sensor.yaml data.csv   NYU40 class, 8-bit grey
 //   label0/data/<t>_instance.png                    instance id, 16-bit grey
 //   depth0_noisy/data/<t>.png sensor.yaml data.csv  Kinect-like z-depth, mm
-//   flow0/data/<t>.flo .png _occ.png  sensor.yaml data.csv   forward flow (not the last frame)
+//   flow0/data/<t>.flo .png .exr _occ.png  sensor.yaml data.csv   forward flow (not the last
+//                                                   frame); of .flo .png .exr those in spec.storage
 //   cam1/ depth1/ ... label1/ ...                   with spec.stereo_baseline_m: cam1's twins
 //   state_groundtruth_estimate0/data.csv sensor.yaml   17-column EuRoC ground truth
 //

@@ -137,17 +137,20 @@ FrameEncoder srgbPng(Pass pass) {
   const std::string key = "png8-srgb/" + passName(pass);
   if (pass == Pass::Rgb)  // the displayed colour: after the camera response
     return {pass, key,
-            [](const fs::path& p, const FrameView& v) { writePng(p, encodeSrgb8(v.rgb_display)); }};
+            [](const fs::path& p, const FrameView& v) { writePng(p, encodeSrgb8(v.rgb_display), v.storage.png_level);
+            }};
   const ImageF Frame::*m = floatMember(pass);
   return {pass, key,
-          [m](const fs::path& p, const FrameView& v) { writePng(p, encodeSrgb8(v.frame.*m)); }};
+          [m](const fs::path& p, const FrameView& v) {
+            writePng(p, encodeSrgb8(v.frame.*m), v.storage.png_level);
+          }};
 }
 
 FrameEncoder depthPng(Pass pass, double scale) {
   const ImageF Frame::*m = floatMember(pass);
   return {pass, fmt::format("png16-depth-x{}/{}", scale, passName(pass)),
           [m, scale](const fs::path& p, const FrameView& v) {
-            writePng(p, encodeDepth16(v.frame.*m, scale));
+            writePng(p, encodeDepth16(v.frame.*m, scale), v.storage.png_level);
           }};
 }
 
@@ -156,23 +159,31 @@ FrameEncoder floatExr(Pass pass, std::vector<std::string> channel_names) {
   std::string key = "exr-float";
   for (const auto& c : channel_names) key += "-" + c;
   return {pass, key + "/" + passName(pass),
-          [m, names = std::move(channel_names)](const fs::path& p, const FrameView& v) {
-            writeExr(p, v.frame.*m, names);
+          [pass, m, names = std::move(channel_names)](const fs::path& p, const FrameView& v) {
+            ExrOptions o{v.storage.exr};
+            o.half = pass == Pass::Rgb && v.storage.rgb_exr_half;
+            writeExr(p, v.frame.*m, names, o);
           }};
 }
 
 FrameEncoder normalPng(Pass pass) {
   const ImageF Frame::*m = floatMember(pass);
   return {pass, "png16-normal/" + passName(pass),
-          [m](const fs::path& p, const FrameView& v) { writePng(p, encodeNormal16(v.frame.*m)); }};
+          [m](const fs::path& p, const FrameView& v) {
+            writePng(p, encodeNormal16(v.frame.*m), v.storage.png_level);
+          }};
 }
 
 FrameEncoder rawPng(Pass pass) {
   std::string key = "png-raw/" + passName(pass);
   if (pass == Pass::Label)
-    return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.label); }};
+    return {pass, key, [](const fs::path& p, const FrameView& v) {
+              writePng(p, v.frame.label, v.storage.png_level);
+            }};
   INET_CHECK_MSG(pass == Pass::Instance, "rawPng takes the label or instance pass");
-  return {pass, key, [](const fs::path& p, const FrameView& v) { writePng(p, v.frame.instance); }};
+  return {pass, key, [](const fs::path& p, const FrameView& v) {
+            writePng(p, v.frame.instance, v.storage.png_level);
+          }};
 }
 
 namespace {
@@ -193,7 +204,14 @@ FrameEncoder flowFlo(Pass pass) {
 FrameEncoder flowKittiPng(Pass pass) {
   INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
   return {pass, "png16-kitti/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
-            writeKittiFlowPng(p, flowOf(v.frame, pass));
+            writeKittiFlowPng(p, flowOf(v.frame, pass), false, v.storage.png_level);
+          }};
+}
+
+FrameEncoder flowExr(Pass pass) {
+  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
+  return {pass, "exr-flow/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
+            writeFlowExr(p, flowOf(v.frame, pass), v.storage.exr);
           }};
 }
 
@@ -202,8 +220,38 @@ FrameEncoder flowOcclusionPng(Pass pass) {
   return {pass, "png8-occlusion/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
             ImageU8 mask = flowOf(v.frame, pass).occluded;
             for (uint8_t& m : mask.data) m = m ? 255 : 0;
-            writePng(p, mask);
+            writePng(p, mask, v.storage.png_level);
           }};
+}
+
+void parseFlowFiles(const std::string& list, StorageOptions& storage, const std::string& file,
+                    const std::string& field) {
+  StorageOptions o = storage;
+  o.flow_flo = o.flow_kitti = o.flow_exr = false;
+  std::string item;
+  const auto take = [&] {
+    if (item == "flo") o.flow_flo = true;
+    else if (item == "kitti") o.flow_kitti = true;
+    else if (item == "exr") o.flow_exr = true;
+    else if (item == "both") o.flow_flo = o.flow_kitti = true;
+    else
+      throw InputError(file, field,
+                       "'" + item + "' is not a flow file (flo, kitti, exr, or both = flo+kitti)");
+    item.clear();
+  };
+  for (char ch : list + ",") {
+    if (ch == ',' || ch == '+') take();
+    else if (ch != ' ') item += ch;
+  }
+  storage = o;
+}
+
+std::string flowFilesName(const StorageOptions& storage) {
+  std::string s;
+  if (storage.flow_flo) s += "+flo";
+  if (storage.flow_kitti) s += "+kitti";
+  if (storage.flow_exr) s += "+exr";
+  return s.empty() ? s : s.substr(1);
 }
 
 std::string formatFixed(double v, int decimals) {

@@ -18,12 +18,35 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image_io.h"
 #include "render/camera.h"
 #include "render/frame.h"
 #include "render/lens.h"
 #include "trajectory/trajectory.h"
 
 namespace inet {
+
+/// How the frame files are stored (docs/output.md section 9). Only lossless choices for ground
+/// truth; the defaults are the bytes every earlier version wrote.
+struct StorageOptions {
+  int png_level = kDefaultPngLevel;  ///< zlib level 0..9 of every PNG
+  ExrCompression exr = ExrCompression::Zip;
+  /// The linear-radiance EXR (SequenceSpec::rgb_exr) in 16-bit half floats: exact enough for
+  /// rendered radiance (core/image_io.h ExrOptions::half); depth EXRs stay 32-bit.
+  bool rgb_exr_half = false;
+  /// Which files hold the optical flow (the occlusion mask is always written): Middlebury .flo
+  /// (float32, uncompressed), KITTI 16-bit PNG (1/64 px steps, |flow| < 512 px: not exact) and
+  /// float32 EXR with channels U, V (unknown = NaN; exact like .flo, compressed).
+  bool flow_flo = true, flow_kitti = true, flow_exr = false;
+  bool operator==(const StorageOptions&) const = default;
+};
+
+/// Parses a flow file list: "flo", "kitti", "exr" joined by ',' or '+', or "both" (flo and
+/// kitti, the default). InputError(file, field) for an unknown or empty entry.
+void parseFlowFiles(const std::string& list, StorageOptions& storage, const std::string& file,
+                    const std::string& field);
+/// The flow file list of `storage` as parseFlowFiles reads it ("flo+kitti").
+std::string flowFilesName(const StorageOptions& storage);
 
 /// What to write, and where. Frame k of the sequence is pose k of the trajectory.
 struct SequenceSpec {
@@ -40,6 +63,7 @@ struct SequenceSpec {
   /// Also write the rgb pass (frame.rgb, linear radiance before any camera response) as a
   /// float32 EXR with channels R, G, B next to the colour PNG (ASL cam0/data/<t>.exr).
   bool rgb_exr = false;
+  StorageOptions storage;
   /// Caller's provenance (seed, versions, settings), merged into meta.json. Must be an object and
   /// must not use the writer's own keys (docs/output.md section 6); doing so is a bug (aborts).
   nlohmann::json meta = nlohmann::json::object();
@@ -69,6 +93,7 @@ struct SequenceContext {
 struct FrameView {
   const Frame& frame;         ///< every pass; frame.rgb is linear radiance
   const ImageF& rgb_display;  ///< frame.rgb after the camera response; frame.rgb if none
+  const StorageOptions& storage;  ///< PNG level and EXR compression of every file
 };
 
 /// How one frame channel becomes one file. `key` names the resulting bytes: two outputs with the
@@ -154,6 +179,8 @@ FrameEncoder flowFlo(Pass pass);
 /// Flow or FlowBackward: KITTI 16-bit RGB PNG (64 u + 2^15, 64 v + 2^15, valid); |flow| >= 512 px
 /// clamps
 FrameEncoder flowKittiPng(Pass pass);
+/// Flow or FlowBackward: float32 EXR, channels U and V, unknown flow = NaN (sensors/flow_io.h)
+FrameEncoder flowExr(Pass pass);
 /// Flow or FlowBackward: occlusion mask, 8-bit grey: 255 = hidden in the other frame or leaves
 /// its image, 0 = seen in both or no surface
 FrameEncoder flowOcclusionPng(Pass pass);

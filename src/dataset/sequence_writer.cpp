@@ -233,8 +233,9 @@ json encodingsJson(const SequenceContext& c) {
         "forward optical flow frame k -> k + 1 in pixels (x right, y down), for every frame but "
         "the last, from the exact depth, both camera poses and the objects' motion: <t>.flo "
         "Middlebury (float32 u, v; 1e10 = no surface), <t>.png KITTI (uint16 RGB = 64 u + "
-        "32768, 64 v + 32768, valid), <t>_occ.png 8-bit, 255 = hidden in frame k + 1 or "
-        "outside its image";
+        "32768, 64 v + 32768, valid), <t>.exr (float32 channels U, V; NaN = no surface), those "
+        "of the three that storage.flow names; <t>_occ.png 8-bit, 255 = hidden in frame k + 1 "
+        "or outside its image";
   if (has(c.spec.passes, Pass::FlowBackward))
     j["flow_bwd"] =
         "backward optical flow frame k -> k - 1 (flow0_bwd/), for every frame but the first, "
@@ -242,7 +243,8 @@ json encodingsJson(const SequenceContext& c) {
   if (c.spec.rgb_exr)
     j["rgb_exr"] =
         "asl cam0/data/<t>.exr: linear RGB radiance as rendered (before exposure, sensor noise, "
-        "tone curve and sRGB encoding), float32, channels R, G, B";
+        "tone curve and sRGB encoding), channels R, G, B: float32, or float16 when "
+        "storage.rgb_exr is half";
   return j;
 }
 
@@ -352,13 +354,14 @@ void SequenceWriter::writeFrame(size_t k, const Frame& frame, const ImageF* rgb_
                                 const Frame* right, const ImageF* right_display) const {
   INET_CHECK_MSG(k < frameCount(), fmt::format("frame {} of {}", k, frameCount()));
   const bool last = k + 1 == frameCount();
-  const FrameView view{frame, rgb_display ? *rgb_display : frame.rgb};
+  const FrameView view{frame, rgb_display ? *rgb_display : frame.rgb, ctx_->spec.storage};
   checkFrame(frame, view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, k == 0, last);
   const bool stereo = ctx_->spec.stereo_baseline_m > 0;
   INET_CHECK_MSG(stereo == (right != nullptr),
                  "writeFrame takes cam1's frame exactly when the spec has a stereo baseline");
   const FrameView right_view{right ? *right : frame,
-                             right_display ? *right_display : (right ? right->rgb : frame.rgb)};
+                             right_display ? *right_display : (right ? right->rgb : frame.rgb),
+                             ctx_->spec.storage};
   if (right)
     checkFrame(*right, right_view.rgb_display, ctx_->spec.passes, ctx_->spec.intrinsics, k, k == 0,
                last);
@@ -421,6 +424,11 @@ std::string SequenceWriter::metaJson() const {
   put("camera", cameraJson(c.lens()));
   put("lens", lensJson(c.lens()));
   put("encodings", encodingsJson(c));
+  put("storage", {{"png_level", c.spec.storage.png_level},
+                  {"exr_compression", exrCompressionName(c.spec.storage.exr)},
+                  {"rgb_exr", c.spec.rgb_exr ? (c.spec.storage.rgb_exr_half ? "half" : "float")
+                                             : "none"},
+                  {"flow", flowFilesName(c.spec.storage)}});
   if (c.spec.stereo_baseline_m > 0)
     put("stereo", {{"baseline_m", c.spec.stereo_baseline_m},
                    {"T_cam0_cam1",

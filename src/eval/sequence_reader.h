@@ -14,7 +14,8 @@
 //                             others), 0 = none
 //   label0/data/<t>_nyu.png   uint8 NYU40 id, 0 = void
 //   flow0/data/<t>.flo        forward flow frame k -> k+1 in pixels, stored at frame k (every
-//                             frame but the last), unknown = no surface
+//                             frame but the last), unknown = no surface; or, when the sequence
+//                             was stored without .flo, <t>.exr (same floats) or <t>.png (KITTI)
 //   flow0/data/<t>_occ.png    255 where frame k's point is hidden in frame k+1 or leaves it
 //   meta.json                 camera.width/height, camera.renderer {fx, fy, cx, cy} (pixel
 //                             centres at +0.5; camera.opencv holds cx - 0.5), camera.lens
@@ -67,7 +68,8 @@ class SequenceReader {
   /// label0 NYU40 ids of frame k.
   ImageU8 labels(size_t k) const;
   /// Forward flow frame k -> k+1 (k + 1 < frameCount()) with its occlusion mask: `valid` from
-  /// the .flo's known pixels, `occluded` (1 = hidden in k+1) from <t>_occ.png.
+  /// the flow file's known pixels (.flo, else .exr, else the KITTI .png), `occluded` (1 = hidden
+  /// in k+1) from <t>_occ.png.
   FlowField flow(size_t k) const;
 
   /// Ground-truth T_world_camera of every frame, in frame order, stamped as the frames:

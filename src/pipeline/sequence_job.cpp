@@ -571,6 +571,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   spec.lens = lens;
   spec.passes = passes;
   spec.rgb_exr = a.hdr;
+  spec.storage = a.storage;
   spec.stereo_baseline_m = a.stereo;
   spec.remove_stale_temporaries = !a.shared_folder;
   spec.meta = provenance(a, scene, opt, cam);
@@ -622,6 +623,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   SequenceJobResult::Sequence result;
   result.dir = dir.string();
   result.configuration = c.describe();
+  result.assets = assetCredits(scene);
   result.frames = traj.size();
   result.skipped = skipped;
 
@@ -879,6 +881,25 @@ std::shared_ptr<const Prepared> preparedFor(const SequenceJob& a, const Sequence
 }
 
 }  // namespace
+
+std::map<int, AssetCredit> assetCredits(const Scene& scene) {
+  std::map<int, AssetCredit> credits;
+  std::shared_ptr<const CatalogLibrary> library;
+  for (const Object& o : scene.objects) {
+    if (o.mesh < 0 || credits.count(o.instance)) continue;
+    const MeshSource& source = scene.meshes[static_cast<size_t>(o.mesh)].source;
+    if (source.kind != MeshSource::Kind::Catalog) continue;
+    if (!library) {
+      if (!catalogsAvailable()) return credits;
+      library = catalogLibrary();
+    }
+    const auto [catalog, piece] = library->find(source.catalog_piece);
+    if (!piece) continue;
+    credits[o.instance] = {piece->id, piece->name, piece->creator,
+                           piece->license.empty() ? catalog->license : piece->license};
+  }
+  return credits;
+}
 
 SequenceJobResult runSequenceJob(const SequenceJob& a) {
   const auto t0 = std::chrono::steady_clock::now();

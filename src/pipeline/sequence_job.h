@@ -14,9 +14,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "dataset/format_writer.h"
 #include "pipeline/sensor_outputs.h"
 #include "pipeline/settings.h"
 #include "render/camera.h"
@@ -59,6 +61,7 @@ struct SequenceJob {
   double readout_ms = 0.0;
   LensSettings lens;
   bool hdr = false;
+  StorageOptions storage;  ///< PNG level, EXR compression, flow files, half-float radiance
   bool allow_dark = false;
   ResponseSettings response;
   std::string exposure = "auto";  ///< auto: metered per sequence; fixed
@@ -76,6 +79,18 @@ struct SequenceJob {
   /// contact sheet) when every frame is complete at the end of the job.
   bool finish = true;
 };
+
+/// Who made a piece of furniture in a scene, and under which licence (Sweet Home 3D catalog
+/// pieces: the piece's own licence, else its catalog's).
+struct AssetCredit {
+  std::string id;  ///< the catalog piece id, e.g. "Blend Swap CC-0#armchair"
+  std::string name, creator, license;
+  bool operator==(const AssetCredit&) const = default;
+};
+
+/// The credits of the instances of `scene` whose meshes are catalog pieces: instance id ->
+/// credit. Empty when the scene holds no catalog piece (or the catalogs are not installed).
+std::map<int, AssetCredit> assetCredits(const Scene& scene);
 
 /// What a job did, per configuration in the order of `config`.
 struct SequenceJobResult {
@@ -96,6 +111,9 @@ struct SequenceJobResult {
       std::vector<std::string> files;
     };
     std::vector<Frame> range;
+    /// The credits of the scene's catalog pieces by instance id (assetCredits): with the
+    /// instance image of a frame, the licences of what it shows.
+    std::map<int, AssetCredit> assets;
   };
   std::vector<Sequence> sequences;
   /// Wall time before the first frame (scene, trajectory, configurations, IMU) and in the

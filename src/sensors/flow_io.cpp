@@ -138,7 +138,8 @@ FlowField readFlo(const fs::path& path) {
   return f;
 }
 
-void writeKittiFlowPng(const fs::path& path, const FlowField& flow, bool non_occluded_only) {
+void writeKittiFlowPng(const fs::path& path, const FlowField& flow, bool non_occluded_only,
+                       int png_level) {
   const WriteMask valid(path, flow, non_occluded_only);
   const int W = flow.flow.width, H = flow.flow.height;
   auto encode = [](float f) {
@@ -152,7 +153,7 @@ void writeKittiFlowPng(const fs::path& path, const FlowField& flow, bool non_occ
     img.data[3 * i + 1] = encode(flow.flow.data[2 * i + 1]);
     img.data[3 * i + 2] = 1;
   }
-  writePng(path, img);  // atomic, deterministic (core/image_io.h)
+  writePng(path, img, png_level);  // atomic, deterministic (core/image_io.h)
 }
 
 FlowField readKittiFlowPng(const fs::path& path) {
@@ -165,6 +166,30 @@ FlowField readKittiFlowPng(const fs::path& path) {
     if (img.data[3 * i + 2] == 0) continue;
     f.flow.data[2 * i] = static_cast<float>((img.data[3 * i] - kKittiOffset) / kKittiScale);
     f.flow.data[2 * i + 1] = static_cast<float>((img.data[3 * i + 1] - kKittiOffset) / kKittiScale);
+    f.valid.data[i] = 1;
+  }
+  return f;
+}
+
+void writeFlowExr(const fs::path& path, const FlowField& flow, ExrCompression compression) {
+  const WriteMask valid(path, flow, false);
+  ImageF uv(flow.flow.width, flow.flow.height, 2, 0.0f);
+  for (size_t i = 0; i < flow.flow.pixelCount(); ++i) {
+    const bool ok = valid(i);
+    uv.data[2 * i] = ok ? flow.flow.data[2 * i] : std::nanf("");
+    uv.data[2 * i + 1] = ok ? flow.flow.data[2 * i + 1] : std::nanf("");
+  }
+  writeExr(path, uv, {"U", "V"}, ExrOptions{compression});
+}
+
+FlowField readFlowExr(const fs::path& path) {
+  const ImageF uv = readExr(path, {"U", "V"});
+  FlowField f = emptyField(uv.width, uv.height);
+  for (size_t i = 0; i < uv.pixelCount(); ++i) {
+    const float u = uv.data[2 * i], v = uv.data[2 * i + 1];
+    if (!std::isfinite(u) || !std::isfinite(v)) continue;
+    f.flow.data[2 * i] = u;
+    f.flow.data[2 * i + 1] = v;
     f.valid.data[i] = 1;
   }
   return f;

@@ -13,6 +13,8 @@
 //    We round to the nearest 1/64 px (the devkit truncates; both decode identically) and clamp to
 //    [0, 65535], i.e. |flow| is representable up to 512 px. Invalid pixels are (0, 0, 0). A pixel
 //    reads as valid when B > 0 (as the devkit's isValid).
+//  Flow EXR (ours; what the .flo holds, compressed): a scanline EXR with float32 channels U and
+//    V; unknown flow is NaN. Lossless like .flo, a fraction of its size (docs/output.md 9).
 //
 // Writers are atomic (a temporary renamed into place, core/atomic_file.h) and deterministic;
 // failures (unwritable folder, wrong image shape) are InputErrors naming the path. Readers throw
@@ -22,6 +24,7 @@
 // positions, so the pixel-centre convention (renderer +0.5 vs OpenCV integer) does not matter.
 #include <filesystem>
 
+#include "core/image_io.h"
 #include "sensors/optical_flow.h"
 
 namespace inet {
@@ -36,8 +39,15 @@ FlowField readFlo(const std::filesystem::path& path);
 /// Writes a KITTI 16-bit flow PNG (flow_occ style: every valid pixel; with non_occluded_only
 /// the occluded ones are left out too, KITTI's flow_noc).
 void writeKittiFlowPng(const std::filesystem::path& path, const FlowField& flow,
-                       bool non_occluded_only = false);
+                       bool non_occluded_only = false, int png_level = kDefaultPngLevel);
 /// Reads a KITTI flow PNG (16-bit, 3 channels): flow (0 where invalid) and valid; occluded empty.
 FlowField readKittiFlowPng(const std::filesystem::path& path);
+
+/// Writes a flow EXR (channels U, V; unknown = NaN) with the given lossless compression.
+void writeFlowExr(const std::filesystem::path& path, const FlowField& flow,
+                  ExrCompression compression = ExrCompression::Zip);
+/// Reads a flow EXR: flow (0 where unknown) and valid; occluded empty. A file without U and V
+/// is an InputError naming the channels it has.
+FlowField readFlowExr(const std::filesystem::path& path);
 
 }  // namespace inet

@@ -134,6 +134,12 @@ TEST(DatasetSpec, OutOfRangeValuesAreErrors) {
   e = errorOf(kMinimal + "storage: {exr_compression: dwaa}\n");
   EXPECT_EQ(e.field(), "storage.exr_compression (line 4)");
   EXPECT_NE(e.problem().find("none, rle, zips, zip, piz"), std::string::npos) << e.what();
+  e = errorOf(kMinimal + "storage: {flow: kitti+jpeg}\n");
+  EXPECT_EQ(e.field(), "storage.flow (line 4)");
+  e = errorOf(kMinimal + "storage: {rgb_exr: double}\n");
+  EXPECT_EQ(e.field(), "storage.rgb_exr (line 4)");
+  EXPECT_EQ(parse(kMinimal + "storage: {flow: exr+kitti, rgb_exr: half}\n").storage.flow,
+            "exr+kitti");
   e = errorOf(kMinimal + "seed: -1\n");
   EXPECT_EQ(e.field(), "seed (line 4)");
   e = errorOf(kMinimal + "seed: 18446744073709551616\n");  // 2^64
@@ -339,7 +345,7 @@ render: {spp: 4, denoise: false, max_bounces: 3}
 passes: [rgb, depth, imu, boxes]
 imu: 200.5
 formats: [tum]
-storage: {exr_compression: piz, png_level: 6, flow: kitti}
+storage: {exr_compression: piz, png_level: 6, flow: kitti, rgb_exr: half}
 shards: {enabled: true, max_mb: 2.5, passes: [cam0, label0_nyu, depth0.exr]}
 )");
   EXPECT_EQ(s.layouts.folders[1].resolved, std::filesystem::path("/shared/more"));

@@ -22,18 +22,7 @@ namespace fs = std::filesystem;
 namespace inet::test {
 namespace {
 
-const std::string kSpec = R"(version: 1
-name: tiny
-seed: 3
-layouts:
-  procedural: {count: 2, rooms: [2, 3], furniture: parametric}
-sequences: {per_layout: 1, frames: 4, unit_frames: 2}
-sparse: {batch: 2}
-camera: {width: 48, height: 36, fx: 45, fy: 45}
-render: {spp: 1}
-imu: 200
-shards: {enabled: true, max_mb: 0.15}
-)";
+const std::string kSpec = kTinyDatasetSpec + "shards: {enabled: true, max_mb: 0.15}\n";
 
 std::map<std::string, std::string> shardTree(const fs::path& dir) {
   std::error_code ec;

@@ -13,9 +13,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -27,17 +30,7 @@ namespace fs = std::filesystem;
 namespace inet::test {
 namespace {
 
-const std::string kSpec = R"(version: 1
-name: tiny
-seed: 3
-layouts:
-  procedural: {count: 2, rooms: [2, 3], furniture: parametric}
-sequences: {per_layout: 1, frames: 4, unit_frames: 2}
-sparse: {batch: 2}
-camera: {width: 48, height: 36, fx: 45, fy: 45}
-render: {spp: 1}
-imu: 200
-)";
+const std::string kSpec = kTinyDatasetSpec;
 
 /// Every file of a build folder but the job state (whose rows hold times).
 std::map<std::string, std::string> buildTree(const fs::path& dir) {
@@ -98,6 +91,33 @@ pid_t spawnShell(const std::string& command) {
     _exit(127);
   }
   return pid;
+}
+
+/// The pids of the ranks building `dir` (processes whose command line is this binary's build of
+/// it, not mpirun's), in rank order (OMPI_COMM_WORLD_RANK from their environment).
+std::vector<pid_t> rankPids(const std::string& dir) {
+  std::map<int, pid_t> by_rank;
+  const std::string want = std::string(INET_BINARY) + '\0' + "dataset" + '\0' + "build" + '\0' +
+                           dir + '\0';
+  std::error_code ec;  // processes come and go while we look
+  for (const auto& e : fs::directory_iterator("/proc", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream cmdline(e.path() / "cmdline", std::ios::binary);
+    const std::string args((std::istreambuf_iterator<char>(cmdline)), {});
+    if (args.rfind(want, 0) != 0) continue;
+    std::ifstream environ(e.path() / "environ", std::ios::binary);
+    // a NUL in front, so that the first variable is found like the others
+    const std::string env =
+        std::string(1, '\0') + std::string((std::istreambuf_iterator<char>(environ)), {});
+    const std::string key = std::string(1, '\0') + "OMPI_COMM_WORLD_RANK=";
+    const size_t at = env.find(key);
+    if (at == std::string::npos) continue;
+    by_rank[std::atoi(env.c_str() + at + key.size())] = std::stoi(name);
+  }
+  std::vector<pid_t> pids;
+  for (const auto& [rank, pid] : by_rank) pids.push_back(pid);
+  return pids;
 }
 
 class CliDataset : public ::testing::Test {
@@ -175,6 +195,9 @@ TEST_F(CliDataset, PlanBuildStatusAndVerify) {
               0u)
         << line;
     ASSERT_TRUE(row["files"].contains("cam0")) << line;
+    // parametric furniture: no catalog piece to credit, but the instance image was looked at
+    ASSERT_TRUE(row["files"].contains("label0_instance")) << line;
+    EXPECT_EQ(row["assets"], nlohmann::json::array()) << line;
     for (const auto& [pass, path] : row["files"].items())
       EXPECT_TRUE(reference_->count(path.get<std::string>())) << pass << " " << path;
   }
@@ -247,8 +270,9 @@ TEST_F(CliDataset, KilledOrStoppedBuildsResumeToTheSameBytes) {
 }
 
 // The MPI path for real: mpirun -np 1 (one thread) and -np 3 (a coordinator and two workers of
-// one thread each; one worker SIGKILLed mid-unit, which takes the job down, then a rerun) both
-// end with the bytes of the threaded reference build.
+// one thread each) both end with the bytes of the threaded reference build, the -np 3 one after
+// three SIGKILLs mid-build, each followed by a rerun: a worker (which takes the job down), the
+// coordinator, and every process of the job at once.
 TEST_F(CliDataset, MpiRanksGiveTheSameBytesAndSurviveAKilledRank) {
   if (mpirun(1).empty()) GTEST_SKIP() << "mpirun not found (Debian: openmpi-bin)";
   ASSERT_NO_FATAL_FAILURE(buildReference());
@@ -262,21 +286,38 @@ TEST_F(CliDataset, MpiRanksGiveTheSameBytesAndSurviveAKilledRank) {
   const std::string three = planned("three");
   const std::string cmd =
       mpirun(3) + INET_BINARY + " dataset build " + three + " --no-progress --threads 1";
-  const pid_t job = spawnShell(cmd);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (colourFrames(dir_ / "three" / "data") < 3 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  // a worker: the newest process building this folder that is not mpirun itself
-  const int rc = std::system(("kill -9 $(pgrep -n -f '^" + std::string(INET_BINARY) +
-                              " dataset build " + three + "')")
-                                 .c_str());
-  EXPECT_EQ(rc, 0);
-  int status = 0;
-  waitpid(job, &status, 0);
-  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the job went on without a rank";
-  // the job really was cut short: some units are not done
-  const nlohmann::json mid = nlohmann::json::parse(runInterinet("dataset status --json " + three).out);
-  EXPECT_LT(mid["units"]["done"].get<int>(), 5) << mid.dump();
+  // SIGKILL a worker, then the coordinator, then every process of the job (mpirun and the
+  // ranks at once), each while units are in flight; each rerun goes on from the state
+  const struct {
+    const char* what;
+    size_t frames;  // of 14 colour frames: the kill comes mid-build
+  } kills[] = {{"worker", 3}, {"coordinator", 6}, {"job", 9}};
+  for (const auto& k : kills) {
+    const pid_t job = spawnShell(cmd);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (colourFrames(dir_ / "three" / "data") < k.frames &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const std::vector<pid_t> ranks = rankPids(three);
+    ASSERT_EQ(ranks.size(), 3u) << k.what << ": the ranks of the job";
+    if (std::string(k.what) == "worker") kill(ranks[1], SIGKILL);
+    if (std::string(k.what) == "coordinator") kill(ranks[0], SIGKILL);
+    if (std::string(k.what) == "job") {
+      kill(job, SIGKILL);  // mpirun (the shell exec'd it)
+      for (pid_t r : ranks) kill(r, SIGKILL);
+    }
+    int status = 0;
+    waitpid(job, &status, 0);
+    EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        << k.what << ": the job went on without a rank";
+    for (int i = 0; i < 200 && !rankPids(three).empty(); ++i)  // orphans of a killed mpirun
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(rankPids(three).empty()) << k.what << ": ranks outlived the job";
+    // the job really was cut short: some units are not done
+    const nlohmann::json mid =
+        nlohmann::json::parse(runInterinet("dataset status --json " + three).out);
+    EXPECT_LT(mid["units"]["done"].get<int>(), 5) << k.what << ": " << mid.dump();
+  }
   ASSERT_EQ(std::system((cmd + " >/dev/null 2>&1").c_str()), 0);
   expectSameTree(*reference_, dir_ / "three");
   const RunResult status3 = runInterinet("dataset status " + three);

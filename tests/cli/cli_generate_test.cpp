@@ -23,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/image_io.h"
+#include "sensors/flow_io.h"
 
 namespace fs = std::filesystem;
 
@@ -794,6 +795,85 @@ TEST(Generate, FrameRangesInAnyOrderOrAtOnceGiveTheWholeSequence) {
             std::string::npos)
       << past.err;
   EXPECT_FALSE(fs::exists(dir / "bad")) << "nothing written";
+}
+
+}  // namespace
+}  // namespace inet::test
+
+namespace inet::test {
+namespace {
+
+/// Sorted paths of the files in `dir` whose names end in `suffix`.
+std::vector<fs::path> filesEnding(const fs::path& dir, const std::string& suffix) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0)
+      out.push_back(e.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Storage choices (docs/output.md section 9) change the files, never the ground truth: flow as
+// EXR only holds the .flo's floats, every PNG at level 9 decodes to the same samples, PIZ EXRs
+// to the same depth, half-float radiance within 2^-11; eval reads the EXR flow; meta.json says
+// what was chosen.
+TEST(Generate, StorageChoicesChangeFilesNotGroundTruth) {
+  TempDir dir("gen_storage");
+  const std::string common =
+      kSmall + "--frames 3 --spp 1 --passes rgb,depth,ray_depth,label,flow --format asl ";
+  const fs::path a = dir / "a", b = dir / "b";
+  RunResult r = runInterinet(common + "--hdr --out " + a.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = runInterinet(common + "--hdr-half --flow-files exr --png-level 9 --exr-compression piz "
+                   "--out " + b.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path sa = seqDir(a), sb = seqDir(b);
+  EXPECT_EQ(filesEnding(sb / "flow0/data", ".flo").size(), 0u);
+  EXPECT_EQ(filesEnding(sb / "flow0/data", "_occ.png").size(), 2u);
+  const auto flos = filesEnding(sa / "flow0/data", ".flo");
+  const auto exrs = filesEnding(sb / "flow0/data", ".exr");
+  ASSERT_EQ(flos.size(), 2u);
+  ASSERT_EQ(exrs.size(), 2u);
+  EXPECT_EQ(filesEnding(sb / "flow0/data", ".png").size(), 2u) << "only the occlusion masks";
+  for (size_t i = 0; i < 2; ++i) {
+    const FlowField fa = readFlo(flos[i]), fb = readFlowExr(exrs[i]);
+    EXPECT_EQ(fa.flow, fb.flow);
+    EXPECT_EQ(fa.valid, fb.valid);
+    EXPECT_LT(fs::file_size(exrs[i]), fs::file_size(flos[i]));
+  }
+  size_t bytes_a = 0, bytes_b = 0;
+  for (const fs::path& p : filesEnding(sa / "depth0/data", ".png")) {
+    const fs::path q = sb / "depth0/data" / p.filename();
+    EXPECT_EQ(readPng16(p), readPng16(q));
+    bytes_a += fs::file_size(p);
+    bytes_b += fs::file_size(q);
+  }
+  EXPECT_LT(bytes_b, bytes_a) << "zlib level 9 against 1";
+  for (const fs::path& p : filesEnding(sa / "depth0/data", ".exr"))
+    EXPECT_EQ(readExr(p, {"Z"}), readExr(sb / "depth0/data" / p.filename(), {"Z"}));
+  for (const fs::path& p : filesEnding(sa / "label0/data", "_nyu.png"))
+    EXPECT_EQ(readPng8(p), readPng8(sb / "label0/data" / p.filename()));
+  for (const fs::path& p : filesEnding(sa / "cam0/data", ".exr")) {
+    const ImageF full = readExr(p, {"R", "G", "B"});
+    const ImageF half = readExr(sb / "cam0/data" / p.filename(), {"R", "G", "B"});
+    ASSERT_EQ(full.data.size(), half.data.size());
+    for (size_t i = 0; i < full.data.size(); ++i)
+      ASSERT_LE(std::abs(full.data[i] - half.data[i]), std::abs(full.data[i]) * 0x1p-11f + 1e-7f);
+  }
+  const auto meta = nlohmann::json::parse(readTextFile(sb / "meta.json"));
+  EXPECT_EQ(meta["storage"]["flow"], "exr");
+  EXPECT_EQ(meta["storage"]["png_level"], 9);
+  EXPECT_EQ(meta["storage"]["exr_compression"], "piz");
+  EXPECT_EQ(meta["storage"]["rgb_exr"], "half");
+  // the evaluation reads the EXR flow where there is no .flo
+  r = runInterinet("eval features " + sb.string() + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = runInterinet(common + "--flow-files flo+jpeg --out " + (dir / "c").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--flow-files"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "c"));
 }
 
 }  // namespace

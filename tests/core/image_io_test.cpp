@@ -3,6 +3,8 @@
 #include "core/image_io.h"
 
 #include <gtest/gtest.h>
+
+#include <set>
 #include <zlib.h>
 
 #include <algorithm>
@@ -19,6 +21,7 @@ namespace {
 
 using test::readBytes;
 using test::TempDir;
+namespace fs = std::filesystem;
 
 template <typename T>
 Image<T> pattern(int w, int h, int c, int mul) {
@@ -180,6 +183,51 @@ TEST(ImageIo, ExrRoundTripKeepsChannelOrder) {
   EXPECT_EQ(readExr(dir / "rgb.exr", {"R", "G", "B"}), rgb);
   ImageF g = readExr(dir / "rgb.exr", {"G"});
   for (size_t p = 0; p < g.pixelCount(); ++p) EXPECT_EQ(g.data[p], rgb.data[3 * p + 1]);
+}
+
+// Every storage choice (docs/output.md section 9) is lossless where it must be: each EXR
+// compression gives the floats back bit for bit, half floats keep 11 significant bits, and every
+// PNG level gives the samples back while higher levels write fewer bytes.
+TEST(ImageIo, EveryLosslessCompressionReadsBackExactly) {
+  TempDir dir("exrcomp");
+  ImageF noisy(48, 33, 3);
+  uint32_t x = 12345;
+  for (float& v : noisy.data) {
+    x = x * 1664525u + 1013904223u;
+    v = static_cast<float>(x >> 8) / (1u << 20);  // 0..16, all mantissa bits in use
+  }
+  std::set<std::string> sizes_differ;
+  for (ExrCompression c : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips,
+                           ExrCompression::Zip, ExrCompression::Piz}) {
+    const std::string name = exrCompressionName(c);
+    EXPECT_EQ(parseExrCompression(name, "f", "x"), c);
+    const fs::path p = dir / (name + ".exr");
+    writeExr(p, noisy, {"R", "G", "B"}, ExrOptions{c});
+    EXPECT_EQ(readExr(p, {"R", "G", "B"}), noisy) << name;
+    sizes_differ.insert(std::to_string(fs::file_size(p)));
+    writeExr(dir / "again.exr", noisy, {"R", "G", "B"}, ExrOptions{c});
+    EXPECT_EQ(readBytes(p), readBytes(dir / "again.exr")) << name << " is not deterministic";
+  }
+  EXPECT_GE(sizes_differ.size(), 3u) << "the compressions must really differ";
+  EXPECT_THROW(parseExrCompression("dwaa", "f", "storage.exr_compression"), InputError);
+
+  writeExr(dir / "half.exr", noisy, {"R", "G", "B"}, ExrOptions{ExrCompression::Zip, true});
+  const ImageF half = readExr(dir / "half.exr", {"R", "G", "B"});
+  for (size_t i = 0; i < noisy.data.size(); ++i)
+    EXPECT_LE(std::abs(half.data[i] - noisy.data[i]), std::abs(noisy.data[i]) * 0x1p-11f + 1e-7f)
+        << i;
+  EXPECT_LT(fs::file_size(dir / "half.exr"), fs::file_size(dir / "zip.exr") * 3 / 4);
+
+  const ImageU16 img = pattern<uint16_t>(96, 64, 3, 3);
+  size_t previous = 0;
+  for (int level : {0, 1, 9}) {
+    const fs::path p = dir / ("l" + std::to_string(level) + ".png");
+    writePng(p, img, level);
+    EXPECT_EQ(readPng16(p), img) << level;
+    if (previous) EXPECT_LT(fs::file_size(p), previous) << "level " << level;
+    previous = fs::file_size(p);
+  }
+  EXPECT_THROW(writePng(dir / "bad.png", img, 10), InputError);
 }
 
 TEST(ImageIo, ExrIsDeterministicAndReportsMissingChannels) {

@@ -7,6 +7,7 @@
 
 #include "../expect_input_error.h"
 #include "../temp_dir.h"
+#include "assets/catalog_library.h"
 #include "core/error.h"
 #include "pipeline/sequence_job.h"
 
@@ -76,6 +77,33 @@ TEST(SequenceJob, EveryConfigurationIsOneSequence) {
     EXPECT_TRUE(s.finished);
     EXPECT_EQ(pngs(fs::path(s.dir) / "cam0" / "data"), 2u);
   }
+}
+
+// The credits of what a frame shows: an apartment furnished from the Sweet Home 3D catalogs
+// names its pieces with creator and licence; the parametric furniture has none.
+TEST(SequenceJob, CatalogFurnitureComesWithItsCredits) {
+  if (!catalogsAvailable())
+    GTEST_SKIP() << "the Sweet Home 3D catalogs are not installed (scripts/setup.sh)";
+  test::TempDir dir("seqjob_credits");
+  SequenceJob job = smallJob(dir.path());
+  job.scene.path = "procedural:5";
+  job.scene.rooms = 2;
+  job.scene.furniture = "catalog";
+  job.frames = 1;
+  job.passes = "label,instance";
+  const SequenceJobResult r = runSequenceJob(job);
+  ASSERT_EQ(r.sequences.size(), 1u);
+  const auto& credits = r.sequences[0].assets;
+  EXPECT_GE(credits.size(), 3u) << "a furnished 2-room apartment";
+  for (const auto& [instance, c] : credits) {
+    EXPECT_GT(instance, 0);
+    EXPECT_NE(c.id.find('#'), std::string::npos) << c.id;  // "<catalog id>#<piece>"
+    EXPECT_FALSE(c.creator.empty()) << c.id;
+    EXPECT_FALSE(c.license.empty()) << c.id;
+  }
+  job.scene.furniture = "parametric";
+  job.out = (dir / "parametric").string();
+  EXPECT_TRUE(runSequenceJob(job).sequences[0].assets.empty());
 }
 
 TEST(SequenceJob, BadJobsAreRefusedBeforeAnythingIsWritten) {
