@@ -21,5 +21,8 @@ function(inet_stage_test name)
     INET_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
     INET_BINARY="$<TARGET_FILE:interiornet>")
   inet_set_warnings(${name})
+  if(TARGET inet_test_pch)
+    target_precompile_headers(${name} REUSE_FROM inet_test_pch)
+  endif()
   gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -224,7 +224,9 @@ TEST(ImageIo, EveryLosslessCompressionReadsBackExactly) {
     const fs::path p = dir / ("l" + std::to_string(level) + ".png");
     writePng(p, img, level);
     EXPECT_EQ(readPng16(p), img) << level;
-    if (previous) EXPECT_LT(fs::file_size(p), previous) << "level " << level;
+    if (previous) {
+      EXPECT_LT(fs::file_size(p), previous) << "level " << level;
+    }
     previous = fs::file_size(p);
   }
   EXPECT_THROW(writePng(dir / "bad.png", img, 10), InputError);
