@@ -141,7 +141,7 @@ ImageU8 renderThumbnail(const CatalogModel& m, const AssetsArgs& a, uint32_t ind
   RenderOptions opt;
   opt.spp = a.spp;
   opt.denoise = true;
-  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  opt.passes = bit(Pass::Rgb);
   opt.seed = index;
   Frame frame;
   renderer.render(K, T_wc, opt, 0, frame);

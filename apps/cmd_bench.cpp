@@ -72,7 +72,7 @@ void runBench(const BenchArgs& a) {
 
   RenderOptions opt;
   opt.spp = a.spp;
-  opt.passes = static_cast<PassMask>(Pass::Rgb);
+  opt.passes = bit(Pass::Rgb);
   RenderStats stats;
   renderer.setStats(&stats);
   renderer.render(K, cam.T_world_camera, opt, 0, frame);

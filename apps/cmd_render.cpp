@@ -69,9 +69,13 @@ void runRender(const RenderArgs& a) {
   }
   LensModel lens = makeLens(a, cam.intrinsics);
   // fisheye and panorama have no z-depth: their depth is the ray distance (docs/cameras.md 4)
-  if (pass == static_cast<PassMask>(Pass::DepthZ) &&
-      groundTruthDepthKind(lens.type) == DepthKind::RayDistance)
-    pass = static_cast<PassMask>(Pass::DepthRay);
+  pass = lensDepthPasses(pass, groundTruthDepthKind(lens.type) == DepthKind::ZDepth);
+  const PassInfo& info = passInfo(static_cast<Pass>(pass));
+  if (info.source == PassSource::SensorStage)
+    throw InputError("", "--pass",
+                     fmt::format("'{}' is made by the sensor stage: use 'generate'", info.name));
+  if (info.pixel != PixelType::Float)
+    throw InputError("", "--pass", "label/instance images: use 'generate' (integer PNGs)");
   a.response.validate();
   ThreadLimit limit(a.threads);
   Scene scene = a.scene.load();
@@ -99,19 +103,7 @@ void runRender(const RenderArgs& a) {
     throw InputError("", "--time", "must be a finite number of seconds (|t| <= 1e6)");
   exposure.scene_time_open_ns = static_cast<TimeNs>(std::llround(a.time_s * 1e9));
   renderer.render(lens, exposure, opt, 0, f);
-  ImageF img;
-  if (has(pass, Pass::Rgb))
-    img = f.rgb;
-  else if (has(pass, Pass::Albedo))
-    img = f.albedo;
-  else if (has(pass, Pass::Normal))
-    img = f.normal;
-  else if (has(pass, Pass::DepthZ))
-    img = f.depth_z;
-  else if (has(pass, Pass::DepthRay))
-    img = f.depth_ray;
-  else
-    throw InputError("", "--pass", "label/instance images: use 'generate' (integer PNGs)");
+  const ImageF& img = floatImage(f, info.pass);
   if (ext == ".exr") {
     std::vector<std::string> names =
         img.channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Z"};

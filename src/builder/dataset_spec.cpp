@@ -15,7 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "dataset/format_writer.h"
-#include "render/frame.h"
+#include "render/passes.h"
 
 namespace fs = std::filesystem;
 
@@ -372,7 +372,7 @@ RenderSpec parseRender(const Reader& r, const Value& v) {
 /// sensors; checks the lens rules `generate` applies to explicit names.
 std::vector<std::string> parsePasses(const Reader& r, const Value& v, const CameraSpec& cam) {
   Keys valid = {"default", "all", "imu", "events", "boxes"};
-  for (uint32_t bit = 1; bit & kAllPasses; bit <<= 1) valid.push_back(passName(Pass(bit)));
+  for (const PassInfo& p : kPassTable) valid.push_back(p.name);
   std::vector<std::string> out;
   for (const Value& item : r.list(v)) {
     const std::string name = r.choice(item, valid);

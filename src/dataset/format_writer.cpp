@@ -28,28 +28,12 @@ constexpr FormatEntry kFormats[] = {
     {"tum", makeTumWriter},
 };
 
-/// The float image a pass is stored in.
+/// The float image a pass is stored in (kPassTable's member; another pixel type is a bug).
 const ImageF Frame::*floatMember(Pass pass) {
-  switch (pass) {
-    case Pass::Rgb:
-      return &Frame::rgb;
-    case Pass::DepthZ:
-      return &Frame::depth_z;
-    case Pass::DepthRay:
-      return &Frame::depth_ray;
-    case Pass::Normal:
-      return &Frame::normal;
-    case Pass::Albedo:
-      return &Frame::albedo;
-    case Pass::Shading:
-      return &Frame::shading;
-    case Pass::DepthNoisy:
-      return &Frame::depth_noisy;
-    default:
-      break;
-  }
-  checkFailed("float pass", __FILE__, __LINE__,
-              "pass '" + passName(pass) + "' is not a float image");
+  const PassInfo& info = passInfo(pass);
+  INET_CHECK_MSG(info.pixel == PixelType::Float,
+                 "pass '" + std::string(info.name) + "' is not a float image");
+  return info.member.f;
 }
 
 std::string joinedFormatNames() {
@@ -87,7 +71,8 @@ std::vector<fs::path> FormatWriter::frameFiles(size_t k) const {
 void FormatWriter::addOutput(std::string folder, std::string suffix, FrameEncoder encoder,
                              int camera) {
   if (!has(ctx_->spec.passes, encoder.pass)) return;
-  const bool next = encoder.pass == Pass::Flow, previous = encoder.pass == Pass::FlowBackward;
+  const Neighbour neighbour = passInfo(encoder.pass).neighbour;
+  const bool next = neighbour == Neighbour::Next, previous = neighbour == Neighbour::Previous;
   outputs_.push_back(
       {std::move(folder), std::move(suffix), std::move(encoder), camera, next, previous});
 }
@@ -175,50 +160,50 @@ FrameEncoder normalPng(Pass pass) {
 }
 
 FrameEncoder rawPng(Pass pass) {
-  std::string key = "png-raw/" + passName(pass);
-  if (pass == Pass::Label)
-    return {pass, key, [](const fs::path& p, const FrameView& v) {
-              writePng(p, v.frame.label, v.storage.png_level);
+  const PassInfo& info = passInfo(pass);
+  const std::string key = "png-raw/" + passName(pass);
+  if (info.pixel == PixelType::U8)
+    return {pass, key, [m = info.member.u8](const fs::path& p, const FrameView& v) {
+              writePng(p, v.frame.*m, v.storage.png_level);
             }};
-  INET_CHECK_MSG(pass == Pass::Instance, "rawPng takes the label or instance pass");
-  return {pass, key, [](const fs::path& p, const FrameView& v) {
-            writePng(p, v.frame.instance, v.storage.png_level);
+  INET_CHECK_MSG(info.pixel == PixelType::U16, "rawPng takes an 8- or 16-bit integer pass");
+  return {pass, key, [m = info.member.u16](const fs::path& p, const FrameView& v) {
+            writePng(p, v.frame.*m, v.storage.png_level);
           }};
 }
 
 namespace {
-/// The flow field of a flow pass.
-const FlowField& flowOf(const Frame& f, Pass pass) {
-  INET_CHECK_MSG(pass == Pass::Flow || pass == Pass::FlowBackward,
-                 "a flow encoder takes flow or flow_bwd");
-  return pass == Pass::Flow ? f.flow : f.flow_bwd;
+/// The flow field of a flow pass (kPassTable's member; another pixel type is a bug).
+const FlowField Frame::*flowMember(Pass pass) {
+  const PassInfo& info = passInfo(pass);
+  INET_CHECK_MSG(info.pixel == PixelType::Flow, "a flow encoder takes flow or flow_bwd");
+  return info.member.flow;
 }
 }  // namespace
 
 FrameEncoder flowFlo(Pass pass) {
-  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
   return {pass, "flo/" + passName(pass),
-          [pass](const fs::path& p, const FrameView& v) { writeFlo(p, flowOf(v.frame, pass)); }};
+          [m = flowMember(pass)](const fs::path& p, const FrameView& v) { writeFlo(p, v.frame.*m); }};
 }
 
 FrameEncoder flowKittiPng(Pass pass) {
-  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
-  return {pass, "png16-kitti/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
-            writeKittiFlowPng(p, flowOf(v.frame, pass), false, v.storage.png_level);
+  return {pass, "png16-kitti/" + passName(pass),
+          [m = flowMember(pass)](const fs::path& p, const FrameView& v) {
+            writeKittiFlowPng(p, v.frame.*m, false, v.storage.png_level);
           }};
 }
 
 FrameEncoder flowExr(Pass pass) {
-  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
-  return {pass, "exr-flow/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
-            writeFlowExr(p, flowOf(v.frame, pass), v.storage.exr);
+  return {pass, "exr-flow/" + passName(pass),
+          [m = flowMember(pass)](const fs::path& p, const FrameView& v) {
+            writeFlowExr(p, v.frame.*m, v.storage.exr);
           }};
 }
 
 FrameEncoder flowOcclusionPng(Pass pass) {
-  INET_CHECK(pass == Pass::Flow || pass == Pass::FlowBackward);
-  return {pass, "png8-occlusion/" + passName(pass), [pass](const fs::path& p, const FrameView& v) {
-            ImageU8 mask = flowOf(v.frame, pass).occluded;
+  return {pass, "png8-occlusion/" + passName(pass),
+          [m = flowMember(pass)](const fs::path& p, const FrameView& v) {
+            ImageU8 mask = (v.frame.*m).occluded;
             for (uint8_t& m : mask.data) m = m ? 255 : 0;
             writePng(p, mask, v.storage.png_level);
           }};

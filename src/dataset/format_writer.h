@@ -20,7 +20,7 @@
 
 #include "core/image_io.h"
 #include "render/camera.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "render/lens.h"
 #include "trajectory/trajectory.h"
 

@@ -22,11 +22,6 @@ using nlohmann::json;
 namespace inet {
 namespace {
 
-constexpr Pass kAllPassList[] = {Pass::Rgb,      Pass::DepthZ,  Pass::DepthRay,
-                                 Pass::Normal,   Pass::Label,   Pass::Instance,
-                                 Pass::Albedo,   Pass::Shading, Pass::DepthNoisy,
-                                 Pass::Flow,     Pass::FlowBackward};
-
 void validateTrajectory(const Trajectory& traj) {
   if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
   for (size_t k = 0; k < traj.size(); ++k) {
@@ -68,37 +63,37 @@ void checkImage(const Image<T>& img, Pass pass, int channels, const CameraIntrin
 }
 
 /// A frame that does not match the spec is a caller bug (the renderer was asked for these
-/// passes at this size), not bad user input.
+/// passes at this size), not bad user input. Each pass's member and shape come from kPassTable.
 void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const CameraIntrinsics& K,
                 size_t k, bool first, bool last) {
-  if (last) mask &= ~static_cast<PassMask>(Pass::Flow);  // no next frame, no forward flow
-  if (first) mask &= ~static_cast<PassMask>(Pass::FlowBackward);
-  for (Pass p : kAllPassList)
-    INET_CHECK_MSG(
-        !has(mask, p) || has(f.passes, p),
-        fmt::format("frame {} lacks pass '{}' that the sequence writes", k, passName(p)));
-  if (has(mask, Pass::Rgb)) {
-    checkImage(f.rgb, Pass::Rgb, 3, K, k);
-    checkImage(rgb_display, Pass::Rgb, 3, K, k);
+  for (const PassInfo& info : kPassTable) {
+    const Pass p = info.pass;
+    if (!has(mask, p)) continue;
+    if ((last && info.neighbour == Neighbour::Next) ||
+        (first && info.neighbour == Neighbour::Previous))
+      continue;  // no next (previous) frame, no forward (backward) flow
+    INET_CHECK_MSG(has(f.passes, p), fmt::format("frame {} lacks pass '{}' that the sequence writes",
+                                                 k, info.name));
+    switch (info.pixel) {
+      case PixelType::Float:
+        checkImage(f.*info.member.f, p, info.channels, K, k);
+        break;
+      case PixelType::U8:
+        checkImage(f.*info.member.u8, p, info.channels, K, k);
+        break;
+      case PixelType::U16:
+        checkImage(f.*info.member.u16, p, info.channels, K, k);
+        break;
+      case PixelType::Flow: {
+        const FlowField& flow = f.*info.member.flow;
+        checkImage(flow.flow, p, info.channels, K, k);
+        checkImage(flow.valid, p, 1, K, k);
+        checkImage(flow.occluded, p, 1, K, k);
+        break;
+      }
+    }
   }
-  if (has(mask, Pass::DepthZ)) checkImage(f.depth_z, Pass::DepthZ, 1, K, k);
-  if (has(mask, Pass::DepthRay)) checkImage(f.depth_ray, Pass::DepthRay, 1, K, k);
-  if (has(mask, Pass::Normal)) checkImage(f.normal, Pass::Normal, 3, K, k);
-  if (has(mask, Pass::Label)) checkImage(f.label, Pass::Label, 1, K, k);
-  if (has(mask, Pass::Instance)) checkImage(f.instance, Pass::Instance, 1, K, k);
-  if (has(mask, Pass::Albedo)) checkImage(f.albedo, Pass::Albedo, 3, K, k);
-  if (has(mask, Pass::Shading)) checkImage(f.shading, Pass::Shading, 3, K, k);
-  if (has(mask, Pass::DepthNoisy)) checkImage(f.depth_noisy, Pass::DepthNoisy, 1, K, k);
-  if (has(mask, Pass::Flow)) {
-    checkImage(f.flow.flow, Pass::Flow, 2, K, k);
-    checkImage(f.flow.valid, Pass::Flow, 1, K, k);
-    checkImage(f.flow.occluded, Pass::Flow, 1, K, k);
-  }
-  if (has(mask, Pass::FlowBackward)) {
-    checkImage(f.flow_bwd.flow, Pass::FlowBackward, 2, K, k);
-    checkImage(f.flow_bwd.valid, Pass::FlowBackward, 1, K, k);
-    checkImage(f.flow_bwd.occluded, Pass::FlowBackward, 1, K, k);
-  }
+  if (has(mask, Pass::Rgb)) checkImage(rgb_display, Pass::Rgb, passInfo(Pass::Rgb).channels, K, k);
 }
 
 bool sameIntrinsics(const CameraIntrinsics& a, const CameraIntrinsics& b) {
@@ -412,8 +407,8 @@ std::string SequenceWriter::metaJson() const {
     j[key] = std::move(value);
   };
   json passes = json::array();
-  for (Pass p : kAllPassList)
-    if (has(c.spec.passes, p)) passes.push_back(passName(p));
+  for (const PassInfo& p : kPassTable)
+    if (has(c.spec.passes, p.pass)) passes.push_back(p.name);
   put("meta_format_version", 1);
   put("sequence", c.sequenceName());
   put("formats", formats());

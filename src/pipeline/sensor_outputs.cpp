@@ -20,10 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr PassMask bit(Pass p) {
-  return static_cast<PassMask>(p);
-}
-
 }  // namespace
 
 SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool rolling_shutter) {
@@ -56,8 +52,8 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
   }
   if (everything || standard) {
     out.frame = kAllPasses;
-    if (!pinhole) out.frame &= ~bit(Pass::DepthNoisy);
-    if (rolling_shutter) out.frame &= ~(bit(Pass::Flow) | bit(Pass::FlowBackward));
+    if (!pinhole) out.frame &= ~kPinholeOnlyPasses;
+    if (rolling_shutter) out.frame &= ~kGlobalShutterOnlyPasses;
     out.imu = out.boxes = true;
     out.events |= everything && events_ok;
   }
@@ -70,11 +66,11 @@ SequencePasses parseSequencePasses(const std::string& list, LensType lens, bool 
       throw InputError("", "--passes",
                        e.problem() + "; also: imu, events, boxes, default (all but events)");
     }
-    if (has(out.frame, Pass::DepthNoisy) && !pinhole)
+    if ((out.frame & kPinholeOnlyPasses) && !pinhole)
       throw InputError("", "--passes",
                        "depth_noisy needs --lens pinhole (the Kinect model is a pinhole "
                        "projector and camera)");
-    if ((has(out.frame, Pass::Flow) || has(out.frame, Pass::FlowBackward)) && rolling_shutter)
+    if ((out.frame & kGlobalShutterOnlyPasses) && rolling_shutter)
       throw InputError("", "--passes",
                        "flow with a rolling shutter (--readout-ms) is not supported: the rows of "
                        "a frame see different poses");
@@ -105,11 +101,8 @@ EventCameraOptions EventSettings::options(uint64_t seed) const {
 }
 
 PassMask renderPassesFor(PassMask passes, LensType lens, bool boxes) {
-  PassMask r = passes & kRenderPasses;
-  if (has(passes, Pass::DepthNoisy)) r |= bit(Pass::DepthZ) | bit(Pass::Normal);
-  if (has(passes, Pass::Flow) || has(passes, Pass::FlowBackward))
-    r |= bit(groundTruthDepthKind(lens) == DepthKind::ZDepth ? Pass::DepthZ : Pass::DepthRay) |
-         bit(Pass::Instance);
+  PassMask r = (passes & kRenderPasses) |
+               neededForDerived(passes, groundTruthDepthKind(lens) == DepthKind::ZDepth);
   if (boxes) r |= bit(Pass::Instance);
   return r;
 }

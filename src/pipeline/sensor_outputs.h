@@ -8,7 +8,7 @@
 #include <string>
 
 #include "render/camera.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "render/lens.h"
 #include "scene/scene.h"
 #include "sensors/bspline.h"

@@ -236,8 +236,7 @@ CameraIntrinsics lensIntrinsics(const SequenceJob& a, LensType type) {
 /// z-depth is zero or negative: their depth is the ray distance (docs/cameras.md section 4), so
 /// the 'depth' pass becomes 'ray_depth' and the depth PNGs hold the ray distance.
 PassMask lensPasses(PassMask passes, LensType type) {
-  if (groundTruthDepthKind(type) == DepthKind::ZDepth || !has(passes, Pass::DepthZ)) return passes;
-  return (passes & ~static_cast<PassMask>(Pass::DepthZ)) | static_cast<PassMask>(Pass::DepthRay);
+  return lensDepthPasses(passes, groundTruthDepthKind(type) == DepthKind::ZDepth);
 }
 
 /// The exposure of frame k: centred on the frame's timestamp, poses interpolated along the
@@ -486,7 +485,7 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
   RenderOptions ro = opt;
   ro.spp = 8;
   ro.denoise = false;
-  ro.passes = static_cast<PassMask>(Pass::Rgb);
+  ro.passes = bit(Pass::Rgb);
   CameraResponse fixed;
   fixed.exposure_ev = a.response.exposure_ev;
   double sum = 0.0, log_sum = 0.0;
@@ -688,7 +687,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     reuse->clear();
     if (reuse1) reuse1->clear();
     RenderOptions colour = opt;
-    colour.passes = static_cast<PassMask>(Pass::Rgb);
+    colour.passes = bit(Pass::Rgb);
     for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(window - 1)); j < k; ++j) {
       const auto idx = static_cast<uint32_t>(j);
       renderReused(j, Pose{}, idx, colour, *reuse, warm);
@@ -753,7 +752,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   if (finishing && want.boxes) {
     // frames this job did not render: their instance image again (one ray per pixel)
     RenderOptions ro;
-    ro.passes = static_cast<PassMask>(Pass::Instance);
+    ro.passes = bit(Pass::Instance);
     for (size_t k = 0; k < traj.size(); ++k) {
       if (seen[k]) continue;
       stopIfSignalled(

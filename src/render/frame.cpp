@@ -1,31 +1,34 @@
 #include "render/frame.h"
+#include "render/passes.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
 
 namespace inet {
-namespace {
-struct PassEntry {
-  Pass pass;
-  const char* name;
-};
-constexpr PassEntry kPasses[] = {
-    {Pass::Rgb, "rgb"},       {Pass::DepthZ, "depth"},    {Pass::DepthRay, "ray_depth"},
-    {Pass::Normal, "normal"}, {Pass::Label, "label"},     {Pass::Instance, "instance"},
-    {Pass::Albedo, "albedo"}, {Pass::Shading, "shading"}, {Pass::DepthNoisy, "depth_noisy"},
-    {Pass::Flow, "flow"},     {Pass::FlowBackward, "flow_bwd"},
-};
-}  // namespace
+// The functions of render/passes.h live here too (one library source for both headers).
 
 std::string passName(Pass p) {
-  for (const auto& e : kPasses)
-    if (e.pass == p) return e.name;
-  return "?";
+  return passInfo(p).name;
+}
+
+const ImageF& floatImage(const Frame& f, Pass p) {
+  const PassInfo& info = passInfo(p);
+  INET_CHECK_MSG(info.pixel == PixelType::Float,
+                 fmt::format("pass '{}' is not a float image", info.name));
+  return f.*info.member.f;
+}
+
+const FlowField& flowField(const Frame& f, Pass p) {
+  const PassInfo& info = passInfo(p);
+  INET_CHECK_MSG(info.pixel == PixelType::Flow,
+                 fmt::format("pass '{}' is not a flow field", info.name));
+  return f.*info.member.flow;
 }
 
 std::string FlowField::toString() const {
@@ -53,15 +56,15 @@ PassMask parsePassList(const std::string& list, const std::string& where) {
       continue;
     }
     bool found = false;
-    for (const auto& e : kPasses) {
+    for (const PassInfo& e : kPassTable) {
       if (item == e.name) {
-        mask |= static_cast<PassMask>(e.pass);
+        mask |= bit(e.pass);
         found = true;
       }
     }
     if (!found) {
       std::vector<std::string> names;
-      for (const auto& e : kPasses) names.emplace_back(e.name);
+      for (const PassInfo& e : kPassTable) names.emplace_back(e.name);
       throw InputError(
           where, "--passes",
           fmt::format("unknown pass '{}' (valid: all, {})", item, fmt::join(names, ", ")));

@@ -107,7 +107,7 @@ void renderGroundTruth(const EmbreeScene& scene, const LensModel& lens, const Po
   allocate(frame.albedo, K, 3, has(passes, Pass::Albedo));
   allocate(frame.label, K, 1, has(passes, Pass::Label));
   allocate(frame.instance, K, 1, has(passes, Pass::Instance));
-  frame.passes = (frame.passes & static_cast<PassMask>(Pass::Rgb)) | (passes & kGroundTruthPasses);
+  frame.passes = (frame.passes & bit(Pass::Rgb)) | (passes & kGroundTruthPasses);
   if ((passes & kGroundTruthPasses) == 0) return;
 
   const Eigen::Matrix3f R_world_camera = T_world_camera.rotation().cast<float>();

@@ -11,7 +11,7 @@
 #include "core/pose.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "render/integrator.h"
 #include "render/lens.h"
 

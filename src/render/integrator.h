@@ -12,7 +12,7 @@
 #include "core/pose.h"
 #include "render/camera.h"
 #include "render/denoise.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "render/lens.h"
 #include "render/shutter.h"
 

@@ -24,24 +24,23 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   scene_->setWindow(exposure.scene_time_open_ns, exposure.span());
   const CameraExposure* moving =
       exposure.span() > 0 && (exposure.moving() || scene_->hasMotion()) ? &exposure : nullptr;
-  const PassMask kAlbedo = static_cast<PassMask>(Pass::Albedo);
   const bool shading = has(options.passes, Pass::Shading);
-  const bool rgb = has(options.passes, Pass::Rgb) || shading;  // shading is derived from rgb
+  // shading is rgb / albedo: the path tracer runs for it, and the albedo is a helper
+  const PassMask shading_needs = passInfo(Pass::Shading).needs;
+  const bool rgb = has(options.passes, Pass::Rgb) || shading;
   const bool denoising = rgb && options.denoise && layers == nullptr;
   // Ground truth the RGB stage needs besides what was asked (denoiser guides, the albedo that
   // shading divides by, what the caller's filters need) is traced in the same pass and left
   // unflagged in frame.passes.
   PassMask helpers = 0;
-  if (denoising)
-    helpers |= kAlbedo | static_cast<PassMask>(Pass::Normal) | static_cast<PassMask>(Pass::DepthZ);
+  if (denoising) helpers |= passMask(Pass::Albedo, Pass::Normal, Pass::DepthZ);
   if (rgb && layers)
-    helpers |= kAlbedo | static_cast<PassMask>(Pass::Normal) | static_cast<PassMask>(Pass::DepthZ) |
-               static_cast<PassMask>(Pass::DepthRay) | static_cast<PassMask>(Pass::Instance) |
-               static_cast<PassMask>(Pass::Label);
-  if (shading) helpers |= kAlbedo;
+    helpers |= passMask(Pass::Albedo, Pass::Normal, Pass::DepthZ, Pass::DepthRay, Pass::Instance,
+                        Pass::Label);
+  if (shading) helpers |= shading_needs & kGroundTruthPasses;
   inet::renderGroundTruth(*scene_, lens, T_world_camera, options.passes | helpers, frame, moving);
   frame.passes &= ~helpers | options.passes;
-  frame.passes &= ~(static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Shading));
+  frame.passes &= ~passMask(Pass::Rgb, Pass::Shading);
   if (!rgb) {
     frame.rgb = {};
     frame.shading = {};
@@ -93,7 +92,7 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     }
     denoiseRgb(frame, own, options.denoise_options);
   }
-  if (has(options.passes, Pass::Rgb)) frame.passes |= static_cast<PassMask>(Pass::Rgb);
+  if (has(options.passes, Pass::Rgb)) frame.passes |= bit(Pass::Rgb);
   if (shading) {
     shadingFromRgb(frame);
   } else {
@@ -108,7 +107,7 @@ void shadingFromRgb(Frame& frame) {
     float a = frame.albedo.data[i];
     frame.shading.data[i] = a > 0.f ? frame.rgb.data[i] / std::max(a, 1e-3f) : 0.f;
   }
-  frame.passes |= static_cast<PassMask>(Pass::Shading);
+  frame.passes |= bit(Pass::Shading);
 }
 
 void Renderer::renderGroundTruth(const LensModel& lens, const Pose& T_world_camera, PassMask passes,

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "render/camera.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "render/integrator.h"
 #include "render/lens.h"
 #include "scene/scene.h"

@@ -62,7 +62,7 @@ EventRunStats simulateEventCamera(const Renderer& renderer, const CameraIntrinsi
   ro.max_bounces = opt.max_bounces;
   ro.seed = opt.seed;
   ro.denoise = opt.denoise;
-  ro.passes = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::DepthZ);
+  ro.passes = passMask(Pass::Rgb, Pass::DepthZ);
   AdaptiveSamplingOptions flow_mode, bright_mode;
   flow_mode.mode = AdaptiveSamplingOptions::Mode::Flow;
   flow_mode.lambda = opt.lambda_flow;

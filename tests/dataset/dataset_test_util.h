@@ -15,7 +15,7 @@
 #include "../temp_dir.h"
 #include "dataset/sequence_writer.h"
 #include "render/camera.h"
-#include "render/frame.h"
+#include "render/passes.h"
 #include "trajectory/trajectory.h"
 
 namespace inet::test {

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "render/camera.h"
-#include "render/frame.h"
+#include "render/passes.h"
 
 namespace inet {
 namespace {
