@@ -42,9 +42,13 @@ void runEvents(const EventsCliArgs& a) {
   // the event camera's field of view through a cam0 of its own size
   const CameraIntrinsics K = CameraIntrinsics::centred(
       opt.width, opt.height, opt.width / 2.0 / std::tan(a.hfov_deg * M_PI / 360.0));
-  Renderer renderer(scene);
-  writeEventsFolder(a.out, renderer, scene, K, spline, spline.startNs(), spline.endNs(),
-                    traj.poses.front().t_ns, opt, a.progress);
+  if (!EventsFolder::complete(a.out)) {  // a finished folder is not redone
+    Renderer renderer(scene);
+    const CameraIntrinsics K_events = eventIntrinsics(K, opt.width, opt.height);
+    EventsFolder folder(a.out, traj.poses.front().t_ns, K_events);
+    simulateEvents(folder, renderer, scene, K_events, spline, spline.startNs(), spline.endNs(),
+                   traj.poses.front().t_ns, opt, a.progress, a.out);
+  }
   fmt::print("wrote {}/events0/ ({:.3f} s of events)\n", a.out,
              static_cast<double>(spline.endNs() - spline.startNs()) * 1e-9);
 }

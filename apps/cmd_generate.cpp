@@ -110,8 +110,8 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--frame-range", a->frame_range,
                   "B:E renders frames B..E-1 of the sequence only (default: every frame); runs "
                   "over disjoint ranges, in any order or at once, write the same bytes as one "
-                  "run, and the run that finds every frame done writes the indexes, boxes.json "
-                  "and events0/");
+                  "run, and the run that finds every frame done writes the indexes, imu0/, "
+                  "boxes.json and events0/");
   cmd->add_option("--config", a->config,
                   "comma list of scene configurations, each rendered along the same camera path: "
                   "original, lighting:N (random lighting, seed N), rearranged:N (physics, seed "

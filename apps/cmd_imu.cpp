@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "core/error.h"
+#include "dataset/sequence_writer.h"
 #include "sensors/imu_io.h"
 #include "sensors/imu_job.h"
 
@@ -21,9 +22,9 @@ struct ImuArgs {
 };
 
 void runImu(const ImuArgs& a) {
+  if (a.out.empty()) throw InputError("", "--out", "an output folder is needed");
   ImuJob job;
   job.trajectory = a.trajectory;
-  job.out = a.out;
   job.imu.rate_hz = a.rate_hz;
   job.imu.time_offset_s = a.time_offset_s;
   job.imu.seed = a.seed;
@@ -33,6 +34,7 @@ void runImu(const ImuArgs& a) {
     throw InputError("", "--knot-spacing", "must be in [0, 10] s (0 = automatic)");
   job.fit.knot_spacing_ns = static_cast<TimeNs>(a.knot_spacing_s * 1e9 + 0.5);
   const ImuJobResult r = runImuJob(job);
+  writeImuFolder(a.out, r.seq, job.imu, r.comment);
   warnTrajectoryRead(a.trajectory, r.read);
   fmt::print("{}\n", r.fit.toString());
   fmt::print("wrote {} samples ({:.3f} s at {} Hz, {}) to {}/imu0/\n", r.samples,

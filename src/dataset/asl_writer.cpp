@@ -192,11 +192,11 @@ class AslWriter final : public FormatWriter {
   std::string name() const override { return "asl"; }
   std::string frameStem(size_t k) const override { return aslStamp(ctx().traj.poses.at(k).t_ns); }
 
-  void finish() const override {
-    const auto& dir = ctx().spec.dir;
-    writeTextAtomic(dir / "body.yaml",
-                    "comment: interiornet virtual camera rig; body frame B = cam0 frame "
-                    "(x right, y down, z forward)\n");
+  std::vector<IndexFile> indexFiles() const override {
+    std::vector<IndexFile> files;
+    files.push_back({"body.yaml",
+                     "comment: interiornet virtual camera rig; body frame B = cam0 frame "
+                     "(x right, y down, z forward)\n"});
     for (int camera = 0; camera < (ctx().spec.stereo_baseline_m > 0 ? 2 : 1); ++camera)
       for (const auto& sensor : kImageSensors) {
         // data.csv lists the first file of each frame in this folder (e.g. the depth PNG; the
@@ -205,14 +205,15 @@ class AslWriter final : public FormatWriter {
             camera == 0 ? std::string(sensor.folder) : rightFolder(sensor.folder);
         for (const auto& o : outputs()) {
           if (o.folder != folder + "/data") continue;
-          writeTextAtomic(dir / folder / "data.csv", cameraCsv(o));
-          writeTextAtomic(dir / folder / "sensor.yaml",
-                          cameraYaml(sensorComment(sensor, camera), camera));
+          files.push_back({folder + "/data.csv", cameraCsv(o)});
+          files.push_back({folder + "/sensor.yaml",
+                           cameraYaml(sensorComment(sensor, camera), camera)});
           break;
         }
       }
-    writeTextAtomic(dir / "state_groundtruth_estimate0" / "data.csv", groundTruthCsv());
-    writeTextAtomic(dir / "state_groundtruth_estimate0" / "sensor.yaml", groundTruthYaml());
+    files.push_back({"state_groundtruth_estimate0/data.csv", groundTruthCsv()});
+    files.push_back({"state_groundtruth_estimate0/sensor.yaml", groundTruthYaml()});
+    return files;
   }
 
  private:

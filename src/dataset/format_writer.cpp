@@ -183,7 +183,9 @@ const FlowField Frame::*flowMember(Pass pass) {
 
 FrameEncoder flowFlo(Pass pass) {
   return {pass, "flo/" + passName(pass),
-          [m = flowMember(pass)](const fs::path& p, const FrameView& v) { writeFlo(p, v.frame.*m); }};
+          [m = flowMember(pass)](const fs::path& p, const FrameView& v) {
+            writeFlo(p, v.frame.*m);
+          }};
 }
 
 FrameEncoder flowKittiPng(Pass pass) {

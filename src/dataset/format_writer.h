@@ -4,8 +4,8 @@
 //
 // A format is mostly data: the list of image files it writes per frame (FrameOutput: folder,
 // file-name suffix, which pass, how it is encoded) and how it names frame k (frameStem). The
-// generic code in SequenceWriter writes those files; the format itself only writes its index,
-// list and calibration files in finish().
+// generic code in SequenceWriter writes those files and the format's index, list and
+// calibration files (indexFiles), so that it knows every file of the folder.
 //
 // Adding a format: one new <name>_writer.cpp with a class derived from FormatWriter and a
 // factory function, plus one line in the registry table in format_writer.cpp.
@@ -74,6 +74,11 @@ struct SequenceSpec {
   /// Delete "*.tmp-*" left by a killed run when the writer is created. With several processes
   /// writing one folder at once (MPI ranks), only one of them may do this.
   bool remove_stale_temporaries = true;
+  /// The sequence-level sensor files the folder holds besides the frames and the indexes
+  /// (SequenceWriter::writeImu, writeBoxes, openEvents): they are part of what "finished" means.
+  bool imu = false;     ///< imu0/
+  bool boxes = false;   ///< boxes.json
+  bool events = false;  ///< events0/
 };
 
 /// Everything a format may look at: the spec and the trajectory. Shared, read-only.
@@ -133,9 +138,13 @@ class FormatWriter {
   virtual std::string name() const = 0;
   /// File-name stem of frame k: its timestamp in this format's convention.
   virtual std::string frameStem(size_t k) const = 0;
-  /// Writes the index, list and calibration files (atomically). Called once, after every frame
-  /// exists; must be deterministic (same inputs, same bytes).
-  virtual void finish() const = 0;
+  /// The index, list and calibration files: path relative to the sequence folder and text.
+  /// Written (atomically) after every frame exists; deterministic (same inputs, same bytes).
+  struct IndexFile {
+    std::string path;
+    std::string text;
+  };
+  virtual std::vector<IndexFile> indexFiles() const = 0;
 
   /// The per-frame image files (only passes in spec.passes), fixed at construction.
   const std::vector<FrameOutput>& outputs() const { return outputs_; }

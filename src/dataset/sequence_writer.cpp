@@ -14,13 +14,20 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_io.h"
+#include "dataset/asl_writer.h"
 #include "dataset/image_encode.h"
+#include "sensors/imu_io.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace inet {
 namespace {
+
+/// The files of imu0/, in the order they are written (sensor.yaml last).
+constexpr const char* kImuFiles[] = {"data.csv", "data_noise_free.csv", "biases.csv",
+                                     "sensor.yaml"};
 
 void validateTrajectory(const Trajectory& traj) {
   if (traj.empty()) throw InputError("trajectory", "", "has no poses, nothing to write");
@@ -72,8 +79,8 @@ void checkFrame(const Frame& f, const ImageF& rgb_display, PassMask mask, const 
     if ((last && info.neighbour == Neighbour::Next) ||
         (first && info.neighbour == Neighbour::Previous))
       continue;  // no next (previous) frame, no forward (backward) flow
-    INET_CHECK_MSG(has(f.passes, p), fmt::format("frame {} lacks pass '{}' that the sequence writes",
-                                                 k, info.name));
+    INET_CHECK_MSG(has(f.passes, p),
+                   fmt::format("frame {} lacks pass '{}' that the sequence writes", k, info.name));
     switch (info.pixel) {
       case PixelType::Float:
         checkImage(f.*info.member.f, p, info.channels, K, k);
@@ -395,7 +402,133 @@ void SequenceWriter::finish() const {
                          fmt::format("frame {} was not written; index files are written only "
                                      "after every frame exists",
                                      k));
-  for (const auto& f : formats_) f->finish();
+  for (const auto& f : formats_)
+    for (const auto& file : f->indexFiles()) writeTextAtomic(ctx_->spec.dir / file.path, file.text);
+}
+
+std::vector<fs::path> SequenceWriter::sequenceFiles() const {
+  const fs::path& dir = ctx_->spec.dir;
+  std::vector<fs::path> files;
+  for (const auto& f : formats_)
+    for (const auto& file : f->indexFiles()) files.push_back(dir / file.path);
+  if (ctx_->spec.imu)
+    for (const char* name : kImuFiles) files.push_back(dir / "imu0" / name);
+  if (ctx_->spec.boxes) files.push_back(dir / "boxes.json");
+  if (ctx_->spec.events) files.push_back(dir / "events0" / "sensor.yaml");
+  return files;
+}
+
+bool SequenceWriter::finished() const {
+  std::error_code ec;
+  for (size_t k = 0; k < frameCount(); ++k)
+    if (!frameComplete(k)) return false;
+  for (const auto& p : sequenceFiles())
+    if (!fs::is_regular_file(p, ec)) return false;
+  return true;
+}
+
+void SequenceWriter::writeImu(const ImuSequence& seq, const ImuOptions& opt,
+                              const std::string& comment) const {
+  INET_CHECK_MSG(ctx_->spec.imu, "writeImu needs SequenceSpec::imu");
+  writeImuFolder(ctx_->spec.dir, seq, opt, comment);
+}
+
+void SequenceWriter::writeBoxes(const Scene& scene, const std::vector<InstanceBox>& boxes,
+                                const std::vector<std::vector<InstanceVisibility>>& visible) const {
+  INET_CHECK_MSG(ctx_->spec.boxes, "writeBoxes needs SequenceSpec::boxes");
+  writeTextAtomic(ctx_->spec.dir / "boxes.json", boxesJson(scene, boxes, ctx_->traj, visible));
+}
+
+bool SequenceWriter::eventsComplete() const {
+  return EventsFolder::complete(ctx_->spec.dir);
+}
+
+std::unique_ptr<EventsFolder> SequenceWriter::openEvents(const CameraIntrinsics& K_events) const {
+  INET_CHECK_MSG(ctx_->spec.events, "openEvents needs SequenceSpec::events");
+  return std::make_unique<EventsFolder>(ctx_->spec.dir, ctx_->traj.poses.front().t_ns, K_events);
+}
+
+void writeImuFolder(const fs::path& dir, const ImuSequence& seq, const ImuOptions& opt,
+                    const std::string& comment) {
+  const fs::path out = dir / "imu0";
+  // sensor.yaml last, as in every sensor folder
+  writeTextAtomic(out / kImuFiles[0], formatImuCsv(seq.measured));
+  writeTextAtomic(out / kImuFiles[1], formatImuCsv(seq.ideal));
+  writeTextAtomic(out / kImuFiles[2], formatImuBiasCsv(seq.measured, seq.bias));
+  writeTextAtomic(out / kImuFiles[3], formatImuSensorYaml(opt, comment));
+}
+
+namespace {
+fs::path makeEventsFolders(const fs::path& dir) {
+  const fs::path out = dir / "events0";
+  std::error_code ec;
+  fs::create_directories(out / "frames" / "data", ec);
+  if (ec) throw InputError(out.string(), "--out", "cannot create folder: " + ec.message());
+  return out;
+}
+}  // namespace
+
+EventsFolder::EventsFolder(const fs::path& dir, TimeNs t0_ns, const CameraIntrinsics& K)
+    : out_(makeEventsFolders(dir)),
+      t0_ns_(t0_ns),
+      K_(K),
+      txt_(out_ / "events.txt", t0_ns),
+      h5_(out_ / "events.h5", t0_ns, K.width, K.height),
+      csv_("#timestamp [ns],filename\n") {}
+
+EventsFolder::~EventsFolder() = default;
+
+bool EventsFolder::complete(const fs::path& dir) {
+  std::error_code ec;
+  return fs::is_regular_file(dir / "events0" / "sensor.yaml", ec);
+}
+
+void EventsFolder::add(TimeNs t_ns, const ImageF& intensity, const std::vector<Event>& events) {
+  const std::string name = aslStamp(t_ns) + ".exr";
+  writeExr(out_ / "frames" / "data" / name, intensity, {"Y"});
+  csv_ += aslStamp(t_ns) + "," + name + "\n";
+  txt_.write(events);
+  h5_.write(events);
+}
+
+void EventsFolder::finish(const EventOptions& sim, size_t samples, size_t events) {
+  txt_.close();
+  h5_.close();
+  writeTextAtomic(out_ / "frames" / "data.csv", csv_);
+  // sensor.yaml last: its presence means the folder is complete
+  const std::string yaml = fmt::format(
+      "# General sensor definitions.\n"
+      "sensor_type: camera\n"
+      "comment: interiornet events0, a simulated event camera (ESIM model) at cam0's centre "
+      "with cam0's horizontal field of view. events.txt lines 't x y p' (t in s from the first "
+      "frame {} ns, p 1 = ON, 0 = OFF); events.h5 DSEC layout (/events/t us since /t_offset). "
+      "frames/ holds the linear intensity of each sample the simulator used (EXR, channel Y)\n\n"
+      "# Sensor extrinsics wrt. the body-frame.\n{}\n"
+      "# Camera specific definitions.\n"
+      "rate_hz: 0  # asynchronous\n"
+      "resolution: [{}, {}]\n"
+      "camera_model: pinhole\n"
+      "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
+      "integers)\n"
+      "distortion_model: radial-tangential\n"
+      "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n\n"
+      "# Event specific definitions.\n"
+      "contrast_threshold_pos: {}\n"
+      "contrast_threshold_neg: {}\n"
+      "contrast_threshold_sigma: {}  # per crossing\n"
+      "threshold_spread: {}  # per pixel, fixed\n"
+      "refractory_period_ns: {}\n"
+      "log_eps: {}\n"
+      "leak_rate_hz: {}\n"
+      "shot_noise_rate_hz: {}\n"
+      "samples: {}\n"
+      "events: {}\n",
+      t0_ns_, translationTbs(Vec3::Zero()), K_.width, K_.height, formatFloat(K_.fx),
+      formatFloat(K_.fy), formatFloat(K_.cx - 0.5), formatFloat(K_.cy - 0.5),
+      formatFloat(sim.c_pos), formatFloat(sim.c_neg), formatFloat(sim.sigma_c),
+      formatFloat(sim.threshold_spread), sim.refractory_ns, formatFloat(sim.log_eps),
+      formatFloat(sim.leak_rate_hz), formatFloat(sim.shot_noise_rate_hz), samples, events);
+  writeTextAtomic(out_ / "sensor.yaml", yaml);
 }
 
 std::string SequenceWriter::metaJson() const {

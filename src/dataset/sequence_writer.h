@@ -11,18 +11,31 @@
 //     if (!writer.frameComplete(k)) writer.writeFrame(k, renderer.render(trajectory.poses[k]));
 //   writer.finish();                                           // data.csv, rgb.txt, ... last
 //
+// The writer knows every file of the sequence folder: meta.json, the frames' files, each
+// format's index files and the sequence-level sensor files (imu0/, boxes.json, events0/) that
+// the sensor stage computes and hands over (writeImu, writeBoxes, openEvents).
+//
 // Frame k is pose k of the trajectory and carries its timestamp. Every file is written to a
-// temporary name and renamed, so a file that exists is complete: a rerun skips frames with
-// frameComplete(k) and only redoes what a killed run left unfinished. All output is
-// byte-deterministic (same inputs, same bytes, whatever the thread count or frame order).
+// temporary name and renamed, so a file that exists is complete. One rule decides what is done
+// (docs/output.md section 8): frame k is complete when all of its files exist (frameComplete),
+// and the sequence is finished when every frame is complete and every sequence-level file
+// exists (finished; events0/ by its sensor.yaml, written last). Sequence-level files are written
+// only once every frame is complete. A rerun skips complete frames and a finished sequence. All
+// output is byte-deterministic (same inputs, same bytes, whatever the thread count or order).
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "dataset/boxes_json.h"
 #include "dataset/format_writer.h"
+#include "sensors/event_io.h"
+#include "sensors/event_sim.h"
+#include "sensors/imu.h"
 
 namespace inet {
+
+class EventsFolder;
 
 class SequenceWriter {
  public:
@@ -63,6 +76,24 @@ class SequenceWriter {
   /// all frames; throws InputError naming the first missing frame file if a frame is incomplete.
   void finish() const;
 
+  /// The sequence-level files whose names are known before they are written: every format's
+  /// index files, imu0/'s files (spec.imu), boxes.json (spec.boxes) and events0/sensor.yaml
+  /// (spec.events; the last file of events0/, which stands for the folder).
+  std::vector<std::filesystem::path> sequenceFiles() const;
+  /// Every frame complete and every sequenceFiles() file there: nothing is left to write.
+  bool finished() const;
+
+  /// imu0/ (spec.imu): data.csv (measured), data_noise_free.csv, biases.csv, sensor.yaml
+  /// (sensors/imu_io.h formats them); `comment` goes into sensor.yaml.
+  void writeImu(const ImuSequence& seq, const ImuOptions& opt, const std::string& comment) const;
+  /// boxes.json (spec.boxes; dataset/boxes_json.h) with visible[k] the instances of frame k.
+  void writeBoxes(const Scene& scene, const std::vector<InstanceBox>& boxes,
+                  const std::vector<std::vector<InstanceVisibility>>& visible) const;
+  /// events0/ (spec.events): whether it is complete (its sensor.yaml exists), and the folder
+  /// to stream the event camera's samples into (times from the first frame).
+  bool eventsComplete() const;
+  std::unique_ptr<EventsFolder> openEvents(const CameraIntrinsics& K_events) const;
+
   /// The meta.json text this writer writes (deterministic).
   std::string metaJson() const;
 
@@ -70,6 +101,41 @@ class SequenceWriter {
   std::shared_ptr<const SequenceContext> ctx_;
   std::vector<std::unique_ptr<FormatWriter>> formats_;
 };
+
+/// events0/ of a sequence (docs/output.md, events0/), fed sample by sample by the event camera
+/// (sensors/event_camera.h): events.txt (RPG: t x y p, t in s from t0), events.h5 (DSEC layout),
+/// frames/data/<t>.exr (each sample's linear intensity, channel Y) with frames/data.csv, and
+/// sensor.yaml, written last by finish(): a folder with sensor.yaml is complete.
+class EventsFolder {
+ public:
+  /// Creates <dir>/events0/ and opens its event files (temporaries until finish()). `K` is the
+  /// event camera's (renderer convention), `t0_ns` the time the files count from.
+  EventsFolder(const std::filesystem::path& dir, TimeNs t0_ns, const CameraIntrinsics& K);
+  ~EventsFolder();
+  EventsFolder(const EventsFolder&) = delete;
+  EventsFolder& operator=(const EventsFolder&) = delete;
+
+  /// True if <dir>/events0/ is complete (its sensor.yaml exists).
+  static bool complete(const std::filesystem::path& dir);
+  /// One sample of the simulation at t_ns: its intensity image and the events since the last.
+  void add(TimeNs t_ns, const ImageF& intensity, const std::vector<Event>& events);
+  /// Closes the event files, writes frames/data.csv, then sensor.yaml (thresholds and noise of
+  /// `sim`, the sample and event counts).
+  void finish(const EventOptions& sim, size_t samples, size_t events);
+
+ private:
+  std::filesystem::path out_;
+  TimeNs t0_ns_;
+  CameraIntrinsics K_;
+  EventTextWriter txt_;
+  EventH5Writer h5_;
+  std::string csv_;
+};
+
+/// Writes <dir>/imu0/ (the files of SequenceWriter::writeImu) outside a sequence folder
+/// (`interiornet imu`).
+void writeImuFolder(const std::filesystem::path& dir, const ImuSequence& seq,
+                    const ImuOptions& opt, const std::string& comment);
 
 /// Throws InputError(dir, "--out", ...) unless `dir` is a writable folder or could be created
 /// (its nearest existing ancestor is a writable folder). Writes nothing.

@@ -39,8 +39,7 @@ class TumWriter final : public FormatWriter {
   std::string name() const override { return "tum"; }
   std::string frameStem(size_t k) const override { return stems_.at(k); }
 
-  void finish() const override {
-    const auto& dir = ctx().spec.dir;
+  std::vector<IndexFile> indexFiles() const override {
     const std::string file_line = "# file: '" + ctx().sequenceName() + "'\n";
     std::string rgb = "# color images\n" + file_line + "# timestamp filename\n";
     std::string depth = "# depth maps\n" + file_line + "# timestamp filename\n";
@@ -50,13 +49,12 @@ class TumWriter final : public FormatWriter {
       depth += fmt::format("{} depth/{}.png\n", ts, ts);
       assoc += fmt::format("{} rgb/{}.png {} depth/{}.png\n", ts, ts, ts, ts);
     }
-    writeTextAtomic(dir / "rgb.txt", rgb);
-    writeTextAtomic(dir / "depth.txt", depth);
-    writeTextAtomic(dir / "associations.txt", assoc);
-    writeTextAtomic(dir / "groundtruth.txt", groundTruth(file_line));
-    writeTextAtomic(dir / "accelerometer.txt",
-                    "# accelerometer data\n" + file_line + "# timestamp ax ay az\n");
-    writeTextAtomic(dir / "camera.txt", cameraText());
+    return {{"rgb.txt", rgb},
+            {"depth.txt", depth},
+            {"associations.txt", assoc},
+            {"groundtruth.txt", groundTruth(file_line)},
+            {"accelerometer.txt", "# accelerometer data\n" + file_line + "# timestamp ax ay az\n"},
+            {"camera.txt", cameraText()}};
   }
 
  private:

@@ -10,9 +10,7 @@
 #include "core/image_io.h"
 #include "core/progress.h"
 #include "core/stop.h"
-#include "dataset/asl_writer.h"
 #include "render/renderer.h"
-#include "sensors/event_io.h"
 #include "sensors/optical_flow.h"
 
 namespace inet {
@@ -159,83 +157,31 @@ void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensM
   }
 }
 
-bool writeEventsFolder(const fs::path& dir, const Renderer& renderer, const Scene& scene,
-                       const CameraIntrinsics& K_cam0, const PoseSpline& spline, TimeNs t_begin_ns,
-                       TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
-                       bool progress) {
-  const fs::path out = dir / "events0";
-  std::error_code ec;
-  if (fs::is_regular_file(out / "sensor.yaml", ec)) return false;
-  fs::create_directories(out / "frames" / "data", ec);
-  if (ec) throw InputError(out.string(), "--out", "cannot create folder: " + ec.message());
-  const CameraIntrinsics K = eventIntrinsics(K_cam0, opt.width, opt.height);
+void simulateEvents(EventsFolder& out, const Renderer& renderer, const Scene& scene,
+                    const CameraIntrinsics& K_events, const PoseSpline& spline, TimeNs t_begin_ns,
+                    TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
+                    bool progress, const std::string& where) {
   EventCameraOptions o = opt;
   for (const Object& obj : scene.objects) o.brightness_criterion |= obj.moving();
-  // times in the files: from the first frame (RPG) / t_offset = first frame in us (DSEC)
-  EventTextWriter txt(out / "events.txt", scene_t0_ns);
-  EventH5Writer h5(out / "events.h5", scene_t0_ns, K.width, K.height);
-  std::string csv = "#timestamp [ns],filename\n";
   ProgressBar bar(1000, "permille of event time", progress);
   const EventRunStats stats = simulateEventCamera(
-      renderer, K, spline, t_begin_ns, t_end_ns, scene_t0_ns, o,
+      renderer, K_events, spline, t_begin_ns, t_end_ns, scene_t0_ns, o,
       [&](int64_t t, const ImageF& intensity, const std::vector<Event>& events) {
-        const std::string name = aslStamp(t) + ".exr";
-        writeExr(out / "frames" / "data" / name, intensity, {"Y"});
-        csv += aslStamp(t) + "," + name + "\n";
-        txt.write(events);
-        h5.write(events);
+        out.add(t, intensity, events);
       },
       [&](double f) {
         bar.update(static_cast<int64_t>(f * 1000));
-        // events0/ is complete only with its sensor.yaml: a rerun simulates it again
-        stopIfSignalled("during the event camera of " + dir.string());
+        // events0/ is complete only once finished: a rerun simulates it again
+        stopIfSignalled("during the event camera of " + where);
       });
   bar.finish();
-  txt.close();
-  h5.close();
-  writeTextAtomic(out / "frames" / "data.csv", csv);
+  out.finish(opt.sim, stats.samples, stats.events);
   const double sim_s = (t_end_ns - t_begin_ns) * 1e-9;
   std::fprintf(stderr,
                "events: %zu events from %zu samples over %.3f s of simulation (%.0f events/s "
                "simulated) in %.1f s wall (%.1f s rendering); steps %.2f..%.2f ms\n",
                stats.events, stats.samples, sim_s, stats.events / std::max(sim_s, 1e-9),
                stats.wall_s, stats.render_s, stats.min_dt_s * 1e3, stats.max_dt_s * 1e3);
-  // sensor.yaml last: its presence means the folder is complete
-  const std::string yaml = fmt::format(
-      "# General sensor definitions.\n"
-      "sensor_type: camera\n"
-      "comment: interiornet events0, a simulated event camera (ESIM model) at cam0's centre "
-      "with cam0's horizontal field of view. events.txt lines 't x y p' (t in s from the first "
-      "frame {} ns, p 1 = ON, 0 = OFF); events.h5 DSEC layout (/events/t us since /t_offset). "
-      "frames/ holds the linear intensity of each sample the simulator used (EXR, channel Y)\n\n"
-      "# Sensor extrinsics wrt. the body-frame.\n{}\n"
-      "# Camera specific definitions.\n"
-      "rate_hz: 0  # asynchronous\n"
-      "resolution: [{}, {}]\n"
-      "camera_model: pinhole\n"
-      "intrinsics: [{}, {}, {}, {}] #fu, fv, cu, cv (OpenCV convention, pixel centres at "
-      "integers)\n"
-      "distortion_model: radial-tangential\n"
-      "distortion_coefficients: [0.0, 0.0, 0.0, 0.0]\n\n"
-      "# Event specific definitions.\n"
-      "contrast_threshold_pos: {}\n"
-      "contrast_threshold_neg: {}\n"
-      "contrast_threshold_sigma: {}  # per crossing\n"
-      "threshold_spread: {}  # per pixel, fixed\n"
-      "refractory_period_ns: {}\n"
-      "log_eps: {}\n"
-      "leak_rate_hz: {}\n"
-      "shot_noise_rate_hz: {}\n"
-      "samples: {}\n"
-      "events: {}\n",
-      scene_t0_ns, translationTbs(Vec3::Zero()), K.width, K.height, formatFloat(K.fx),
-      formatFloat(K.fy), formatFloat(K.cx - 0.5), formatFloat(K.cy - 0.5),
-      formatFloat(opt.sim.c_pos), formatFloat(opt.sim.c_neg), formatFloat(opt.sim.sigma_c),
-      formatFloat(opt.sim.threshold_spread), opt.sim.refractory_ns, formatFloat(opt.sim.log_eps),
-      formatFloat(opt.sim.leak_rate_hz), formatFloat(opt.sim.shot_noise_rate_hz), stats.samples,
-      stats.events);
-  writeTextAtomic(out / "sensor.yaml", yaml);
-  return true;
 }
 
 }  // namespace inet

@@ -1,12 +1,13 @@
 #pragma once
 // The sensor stage of a sequence (pipeline/sequence_job.h) and of `interiornet events`: which
 // sensors a --passes list selects, the per-frame derived passes (Kinect-like depth, optical
-// flow) and the sequence-level outputs (events0/, boxes.json).
+// flow) and the event camera run that feeds events0/ (the files: dataset/sequence_writer.h).
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
 
+#include "dataset/sequence_writer.h"
 #include "render/camera.h"
 #include "render/passes.h"
 #include "render/lens.h"
@@ -68,15 +69,14 @@ void deriveFramePasses(const Renderer& renderer, const Scene& scene, const LensM
 /// and instance for flow, instance for boxes).
 PassMask renderPassesFor(PassMask passes, LensType lens, bool boxes);
 
-/// Writes <dir>/events0/: events.txt (RPG: t x y p, t in s from the first frame), events.h5
-/// (DSEC layout), frames/<t>.exr (the linear intensity of each sample, channel Y) with
-/// frames/data.csv, and sensor.yaml (pinhole, thresholds, T_BS = identity: the event pixels
-/// sit with cam0, as a DAVIS). Steps follow the brightness too when `scene` has moving objects
-/// (EventCameraOptions::brightness_criterion). Skipped when a previous run completed it (sensor.yaml, written
-/// last, exists). Returns false if skipped.
-bool writeEventsFolder(const std::filesystem::path& dir, const Renderer& renderer, const Scene& scene,
-                       const CameraIntrinsics& K_cam0, const PoseSpline& spline, TimeNs t_begin_ns,
-                       TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
-                       bool progress);
+/// The event camera over [t_begin_ns, t_end_ns] of `spline` (sensors/event_camera.h, with
+/// `K_events` = eventIntrinsics of cam0), each sample streamed into `out` (the sequence folder's
+/// events0/, dataset/sequence_writer.h), which is then finished. Steps follow the brightness
+/// too when `scene` has moving objects (EventCameraOptions::brightness_criterion). StopRequested
+/// names `where` on a signal (events0/ is then left unfinished).
+void simulateEvents(EventsFolder& out, const Renderer& renderer, const Scene& scene,
+                    const CameraIntrinsics& K_events, const PoseSpline& spline, TimeNs t_begin_ns,
+                    TimeNs t_end_ns, TimeNs scene_t0_ns, const EventCameraOptions& opt,
+                    bool progress, const std::string& where);
 
 }  // namespace inet

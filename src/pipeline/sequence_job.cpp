@@ -547,6 +547,38 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
   return scale;
 }
 
+/// The sequence-level files, once every frame of the sequence is complete (docs/output.md
+/// section 8): the formats' indexes, boxes.json, imu0/, then events0/ (the slow one: its own
+/// render of the event camera), each handed to the writer, which knows their names.
+void writeSequenceFiles(const SequenceJob& a, const JobSetup& setup, const Prepared& prepared,
+                        const SceneConfig& c, const Renderer& renderer,
+                        const SequenceWriter& writer, const std::vector<InstanceBox>& boxes,
+                        const std::vector<std::vector<InstanceVisibility>>& visible) {
+  const Trajectory& traj = prepared.cam.frames;
+  const std::string dir = writer.spec().dir.string();
+  writer.finish();
+  if (setup.want.boxes) writer.writeBoxes(c.scene, boxes, visible);
+  if (prepared.imu_seq)
+    writer.writeImu(*prepared.imu_seq, prepared.imu,
+                    "interiornet generate, IMU frame = camera frame");
+  stopIfSignalled(fmt::format("after every frame of {} (the events are not written)", dir));
+  if (setup.want.events) {
+    const PoseSpline& spline = *prepared.spline;
+    const TimeNs t0 = std::max(traj.poses.front().t_ns, spline.startNs());
+    const TimeNs t1 = std::min(traj.poses.back().t_ns, spline.endNs());
+    if (t1 <= t0)
+      throw InputError(prepared.cam.description, "--passes",
+                       "events need a camera path longer than one spline knot interval");
+    if (!writer.eventsComplete()) {
+      const EventCameraOptions& o = setup.event_opt;
+      const CameraIntrinsics K = eventIntrinsics(setup.lens.K, o.width, o.height);
+      const auto events = writer.openEvents(K);
+      simulateEvents(*events, renderer, c.scene, K, spline, t0, t1, traj.poses.front().t_ns, o,
+                     a.progress, dir);
+    }
+  }
+}
+
 /// One sequence of `generate`: configuration `c`'s scene along the camera path, every sensor.
 SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConfig& c,
                                            const JobSetup& setup, const Prepared& prepared) {
@@ -558,9 +590,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   const KinectNoiseOptions& depth_noise = setup.depth_noise;
   const std::vector<std::string>& formats = setup.formats;
   const CameraPath& cam = prepared.cam;
-  const ImuOptions& imu = prepared.imu;
   const std::optional<ImuSequence>& imu_seq = prepared.imu_seq;
-  const std::optional<PoseSpline>& spline = prepared.spline;
   const Scene& scene = c.scene;
   const Trajectory& traj = cam.frames;
   fs::path dir = fs::path(a.out) / layoutFolder(a, scene) / (a.sequence + c.suffix());
@@ -573,6 +603,9 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   spec.storage = a.storage;
   spec.stereo_baseline_m = a.stereo;
   spec.remove_stale_temporaries = !a.shared_folder;
+  spec.imu = imu_seq.has_value();
+  spec.boxes = want.boxes;
+  spec.events = want.events;
   spec.meta = provenance(a, scene, opt, cam);
   spec.meta["configuration"] = c.describe();
   if (has(passes, Pass::DepthNoisy))
@@ -595,7 +628,6 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   }
   SequenceWriter writer(spec, traj, formats);
 
-  if (imu_seq) writeImuFolder(dir, *imu_seq, imu, "interiornet generate, IMU frame = camera frame");
   const std::vector<InstanceBox> boxes =
       want.boxes ? instanceBoxes(scene) : std::vector<InstanceBox>{};
   std::vector<std::vector<InstanceVisibility>> visible(want.boxes ? traj.size() : 0);
@@ -749,7 +781,9 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   bool finishing = a.finish;
   for (size_t k = 0; k < traj.size() && finishing; ++k)
     finishing = (k >= first && k < last) || complete[k] || writer.frameComplete(k);
-  if (finishing && want.boxes) {
+  // a finished sequence (docs/output.md section 8) has nothing left to write
+  const bool already_finished = finishing && writer.finished();
+  if (finishing && !already_finished && want.boxes) {
     // frames this job did not render: their instance image again (one ray per pixel)
     RenderOptions ro;
     ro.passes = bit(Pass::Instance);
@@ -781,19 +815,8 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     stopIfSignalled(fmt::format("after frames {}..{} of {}", first, last - 1, dir.string()));
     return result;
   }
-  writer.finish();
-  if (want.boxes) writeTextAtomic(dir / "boxes.json", boxesJson(scene, boxes, traj, visible));
-  stopIfSignalled(
-      fmt::format("after every frame of {} (the events are not written)", dir.string()));
-  if (want.events) {
-    const TimeNs t0 = std::max(traj.poses.front().t_ns, spline->startNs());
-    const TimeNs t1 = std::min(traj.poses.back().t_ns, spline->endNs());
-    if (t1 <= t0)
-      throw InputError(cam.description, "--passes",
-                       "events need a camera path longer than one spline knot interval");
-    writeEventsFolder(dir, renderer, scene, lens.K, *spline, t0, t1, traj.poses.front().t_ns,
-                      event_opt, a.progress);
-  }
+  if (!already_finished)
+    writeSequenceFiles(a, setup, prepared, c, renderer, writer, boxes, visible);
   std::printf("wrote %zu frames to %s\n", traj.size(), dir.string().c_str());
   result.finished = true;
   result.files.clear();

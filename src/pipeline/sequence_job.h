@@ -9,8 +9,9 @@
 // flat); files are written atomically, so a killed run leaves only whole files and a rerun of the
 // same job skips finished frames and ends with the same bytes. A job may cover a frame range of
 // its sequence: jobs over disjoint ranges, run in any order, in one process or many, write the
-// same bytes as one job over every frame, and the sequence-level files (indexes, boxes.json,
-// events0/) are written by the run that finds every frame complete.
+// same bytes as one job over every frame, and the sequence-level files (indexes, imu0/,
+// boxes.json, events0/) are written by the run that finds every frame complete; a finished
+// sequence is left alone (the one rule: docs/output.md section 8, dataset/sequence_writer.h).
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -75,8 +76,8 @@ struct SequenceJob {
   /// Several jobs write the same sequence at once (disjoint frame ranges): nobody removes a
   /// killed run's temporary files, which may be another job's files in flight.
   bool shared_folder = false;
-  /// Writes every configuration's sequence-level files (indexes, boxes.json, events0/, the
-  /// contact sheet) when every frame is complete at the end of the job.
+  /// Writes every configuration's sequence-level files (indexes, imu0/, boxes.json, events0/,
+  /// the contact sheet) when every frame is complete at the end of the job.
   bool finish = true;
 };
 

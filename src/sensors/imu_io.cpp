@@ -336,13 +336,4 @@ std::vector<ImuSample> parseImuCsv(const std::string& text, const std::string& p
   return out;
 }
 
-void writeImuFolder(const std::filesystem::path& out_dir, const ImuSequence& seq,
-                    const ImuOptions& opt, const std::string& comment) {
-  const std::filesystem::path dir = out_dir / "imu0";
-  writeTextAtomic(dir / "data.csv", formatImuCsv(seq.measured));
-  writeTextAtomic(dir / "data_noise_free.csv", formatImuCsv(seq.ideal));
-  writeTextAtomic(dir / "biases.csv", formatImuBiasCsv(seq.measured, seq.bias));
-  writeTextAtomic(dir / "sensor.yaml", formatImuSensorYaml(opt, comment));
-}
-
 }  // namespace inet

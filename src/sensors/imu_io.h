@@ -1,7 +1,8 @@
 #pragma once
-// IMU files: EuRoC/ASL `imu0/` output and the Kalibr/EuRoC yaml inputs.
+// IMU files: the texts of EuRoC/ASL `imu0/` (written by dataset/sequence_writer.h) and the
+// Kalibr/EuRoC yaml inputs.
 //
-// Output folder (every file written atomically):
+// Output folder:
 //   imu0/data.csv             measured (noisy) stream, EuRoC header and units (rad/s, m/s^2),
 //                             comma separated without spaces, stamps in IMU time (int64 ns)
 //   imu0/data_noise_free.csv  the ideal stream, same layout (ground truth)
@@ -54,9 +55,5 @@ std::string formatImuSensorYaml(const ImuOptions& opt, const std::string& commen
 /// Parses an EuRoC imu data.csv (header line optional, '#' lines skipped); InputError naming
 /// the file and line for a wrong column count or a non-number.
 std::vector<ImuSample> parseImuCsv(const std::string& text, const std::string& path);
-
-/// Writes imu0/{data.csv, data_noise_free.csv, biases.csv, sensor.yaml} under `out_dir`.
-void writeImuFolder(const std::filesystem::path& out_dir, const ImuSequence& seq,
-                    const ImuOptions& opt, const std::string& comment);
 
 }  // namespace inet

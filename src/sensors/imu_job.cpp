@@ -12,18 +12,17 @@ namespace inet {
 
 ImuJobResult runImuJob(const ImuJob& job) {
   job.imu.validate();
-  if (job.out.empty()) throw InputError("", "--out", "an output folder is needed");
   if (job.fit.knot_spacing_ns < 0) throw InputError("", "--knot-spacing", "must be >= 0");
   ImuJobResult res;
   const Trajectory traj = readTrajectory(job.trajectory, {}, {}, &res.read);
-  const ImuSequence seq = simulateImu(traj, job.imu, job.fit, nullptr, &res.fit, job.trajectory);
-  const std::string comment = fmt::format(
+  res.seq = simulateImu(traj, job.imu, job.fit, nullptr, &res.fit, job.trajectory);
+  const ImuSequence& seq = res.seq;
+  res.comment = fmt::format(
       "interiornet IMU from the cubic B-spline (R3 x cumulative SO(3), {:.6f} s knots) of {}; "
       "{}",
       static_cast<double>(res.fit.knot_spacing_ns) * 1e-9,
       std::filesystem::path(job.trajectory).filename().string(),
       job.imu.noise.isZero() ? "noise-free" : "Kalibr discrete noise model");
-  writeImuFolder(job.out, seq, job.imu, comment);
   res.samples = seq.measured.size();
   if (!seq.measured.empty()) {
     res.first_ns = seq.measured.front().t_ns;

@@ -14,6 +14,7 @@
 #include "core/image_io.h"
 #include "dataset/tum_writer.h"
 #include "dataset_test_util.h"
+#include "sensors/imu_io.h"
 
 namespace inet {
 namespace {
@@ -68,10 +69,62 @@ TEST(SequenceWriter, WritesEveryFileOfEveryFrame) {
   EXPECT_THROW(w.finish(), InputError);
 }
 
+// docs/output.md section 8: one rule. Frame k is complete when its files exist; the sequence is
+// finished when every frame is complete and every sequence-level file exists (indexes, imu0/,
+// boxes.json, events0/sensor.yaml).
+TEST(SequenceWriter, FinishedMeansEveryFrameAndEverySequenceFile) {
+  TempDir tmp("finished");
+  const fs::path dir = tmp / "seq";
+  const Trajectory traj = syntheticTrajectory();
+  SequenceSpec spec = syntheticSpec(dir);
+  spec.imu = spec.boxes = spec.events = true;
+  SequenceWriter w(spec, traj, {"asl", "tum"});
+  const auto seq_files = w.sequenceFiles();
+  for (const char* f : {"cam0/data.csv", "rgb.txt", "imu0/data.csv", "imu0/data_noise_free.csv",
+                        "imu0/biases.csv", "imu0/sensor.yaml", "boxes.json", "events0/sensor.yaml"})
+    EXPECT_NE(std::find(seq_files.begin(), seq_files.end(), dir / f), seq_files.end()) << f;
+  for (size_t k = 0; k < w.frameCount(); ++k)
+    w.writeFrame(k, syntheticFrame(smallCamera(), static_cast<int>(k)));
+  w.finish();
+  EXPECT_FALSE(w.finished()) << "imu0/, boxes.json and events0/ are still missing";
+
+  ImuOptions imu;
+  imu.rate_hz = 200;
+  const ImuSequence imu_seq = simulateImu(traj, imu);
+  w.writeImu(imu_seq, imu, "test");
+  EXPECT_EQ(readBytes(dir / "imu0/data.csv"), formatImuCsv(imu_seq.measured));
+  EXPECT_EQ(readBytes(dir / "imu0/sensor.yaml"), formatImuSensorYaml(imu, "test"));
+  Scene scene;
+  w.writeBoxes(scene, {}, std::vector<std::vector<InstanceVisibility>>(traj.size()));
+  EXPECT_TRUE(fs::is_regular_file(dir / "boxes.json"));
+  EXPECT_FALSE(w.finished());
+
+  // events0/: streamed sample by sample, complete (and the sequence finished) only once its
+  // sensor.yaml, written last, is there
+  EXPECT_FALSE(w.eventsComplete());
+  {
+    const auto events = w.openEvents(smallCamera());
+    events->add(traj.poses[0].t_ns, ImageF(smallCamera().width, smallCamera().height, 1), {});
+    EXPECT_FALSE(w.eventsComplete());
+    EXPECT_FALSE(w.finished());
+    events->finish(EventOptions{}, 1, 0);
+  }
+  EXPECT_TRUE(w.eventsComplete());
+  EXPECT_TRUE(w.finished());
+  EXPECT_TRUE(fs::is_regular_file(dir / "events0/events.txt"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "events0/events.h5"));
+  EXPECT_EQ(readLines(dir / "events0/frames/data.csv").size(), 2u);
+  for (const auto& [name, bytes] : readTree(dir)) EXPECT_FALSE(isTemporaryName(name)) << name;
+
+  // any missing file undoes it
+  fs::remove(dir / "imu0/biases.csv");
+  EXPECT_FALSE(w.finished());
+}
+
 TEST(SequenceWriter, OnlyRequestedPassesAreWritten) {
   TempDir tmp("subset");
   const fs::path dir = tmp / "seq";
-  PassMask mask = static_cast<PassMask>(Pass::Rgb) | static_cast<PassMask>(Pass::Instance);
+  PassMask mask = passMask(Pass::Rgb, Pass::Instance);
   writeSyntheticSequence(dir, {"asl"}, mask);
   EXPECT_TRUE(fs::exists(dir / "cam0" / "data.csv"));
   EXPECT_TRUE(fs::exists(dir / "label0" / "data.csv"));

@@ -150,26 +150,22 @@ TEST(ImuIo, BadYamlAndExtrinsicsNameFileAndField) {
   EXPECT_EQ(e.field(), "T_cam_imu");
 }
 
-TEST(ImuIo, FolderHoldsEverythingAndTheYamlReadsBack) {
-  test::TempDir dir("imu_folder");
+// imu0/ itself is written by dataset/sequence_writer.h (tests/dataset/sequence_writer_test.cpp);
+// here its texts.
+TEST(ImuIo, TextsHoldEverythingAndTheYamlReadsBack) {
   ImuOptions opt;
   opt.noise.gyro_bias0 = Vec3(0.001, 0.002, -0.003);
   opt.T_cam_imu = Pose{so3::expQuat(Vec3(0.1, 0.2, 0.3)), Vec3(0.01, -0.02, 0.03)};
   opt.seed = 9;
   const ImuSequence seq = simulateImu(test::analyticTrajectory(50'000'000, 21), opt);
-  writeImuFolder(dir.path(), seq, opt, "test");
-  for (const char* f : {"data.csv", "data_noise_free.csv", "biases.csv", "sensor.yaml"})
-    EXPECT_TRUE(std::filesystem::exists(dir.path() / "imu0" / f)) << f;
-  EXPECT_EQ(removeStaleTemporaries(dir.path()), 0);  // written atomically, nothing left over
-  const ImuNoise n = readImuNoiseYaml((dir.path() / "imu0/sensor.yaml").string());
+  const ImuNoise n = parseImuNoiseYaml(formatImuSensorYaml(opt, "test"), "sensor.yaml");
   EXPECT_EQ(n.gyroscope_noise_density, opt.noise.gyroscope_noise_density);
   EXPECT_EQ(n.accelerometer_random_walk, opt.noise.accelerometer_random_walk);
   EXPECT_EQ(n.gyro_bias0, opt.noise.gyro_bias0);
   // noisy = noise-free + bias + white noise, row by row from the files alone
-  const std::string imu0 = (dir.path() / "imu0").string();
-  const auto noisy = parseImuCsv(readTextFile(imu0 + "/data.csv"), "data.csv");
-  const auto clean = parseImuCsv(readTextFile(imu0 + "/data_noise_free.csv"), "nf.csv");
-  const std::string bias_text = readTextFile(imu0 + "/biases.csv");
+  const auto noisy = parseImuCsv(formatImuCsv(seq.measured), "data.csv");
+  const auto clean = parseImuCsv(formatImuCsv(seq.ideal), "nf.csv");
+  const std::string bias_text = formatImuBiasCsv(seq.measured, seq.bias);
   EXPECT_EQ(firstLine(bias_text), kImuBiasCsvHeader);
   const auto bias = parseImuCsv(bias_text, "biases.csv");  // same 7-column layout
   ASSERT_EQ(noisy.size(), clean.size());
@@ -184,7 +180,6 @@ TEST(ImuIo, FolderHoldsEverythingAndTheYamlReadsBack) {
 TEST(ImuJob, BadInputNamesFileAndField) {
   test::TempDir dir("imu_job_bad");
   ImuJob job;
-  job.out = (dir / "out").string();
   job.trajectory = (dir / "nope.txt").string();
   InputError e = expectInputError([&] { runImuJob(job); });
   EXPECT_NE(e.file().find("nope.txt"), std::string::npos);
@@ -195,21 +190,17 @@ TEST(ImuJob, BadInputNamesFileAndField) {
   job.imu.rate_hz = 0;
   e = expectInputError([&] { runImuJob(job); });
   EXPECT_EQ(e.field(), "--rate");
-  EXPECT_FALSE(std::filesystem::exists(dir / "out"));  // nothing written on bad input
 }
 
 TEST(ImuJob, RealTumTrajectory) {
   const std::string shared = test::sharedDir();
   if (shared.empty()) GTEST_SKIP() << "no ../shared/data: the TUM fr1_xyz run needs it";
-  test::TempDir dir("imu_job_tum");
   ImuJob job;
   job.trajectory = shared + "/data/trajectories/tum_rgbd_fr1_xyz_groundtruth.txt";
-  job.out = dir.path().string();
   job.imu.seed = 1;
   const ImuJobResult res = runImuJob(job);
   std::printf("fr1_xyz: %zu samples, %s\n", res.samples, res.fit.toString().c_str());
-  const auto clean =
-      parseImuCsv(readTextFile(dir.path() / "imu0/data_noise_free.csv"), "data_noise_free.csv");
+  const auto clean = parseImuCsv(formatImuCsv(res.seq.ideal), "data_noise_free.csv");
   ASSERT_EQ(clean.size(), res.samples);
   EXPECT_GT(res.samples, 800u * 29);
   EXPECT_EQ(clean[1].t_ns - clean[0].t_ns, 1'250'000);
