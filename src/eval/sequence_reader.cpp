@@ -165,14 +165,18 @@ ImageU8 SequenceReader::labels(size_t k) const {
 FlowField SequenceReader::flow(size_t k) const {
   INET_CHECK(k + 1 < frames_.size());
   // the exact files first (.flo, then the EXR of the same floats), KITTI's 1/64 px PNG last
-  const fs::path flo = framePath("flow0", k, ".flo");
-  const fs::path exr = framePath("flow0", k, ".exr");
+  fs::path file = framePath("flow0", k, ".flo");
   std::error_code ec;
-  const fs::path file = fs::exists(flo, ec) || !fs::exists(exr, ec) ? flo : exr;
-  const fs::path png = framePath("flow0", k, ".png");
-  const bool kitti = !fs::exists(flo, ec) && !fs::exists(exr, ec) && fs::exists(png, ec);
-  FlowField f = kitti ? readKittiFlowPng(png) : file == flo ? readFlo(flo) : readFlowExr(exr);
-  checkSize(f.flow, 2, kitti ? png : file);
+  for (const char* ext : {".exr", ".png"}) {
+    if (fs::exists(file, ec)) break;
+    const fs::path next = framePath("flow0", k, ext);
+    if (fs::exists(next, ec)) file = next;
+  }
+  // a missing .flo (no other file either) is reported by readFlo, naming it
+  FlowField f = file.extension() == ".exr"   ? readFlowExr(file)
+                : file.extension() == ".png" ? readKittiFlowPng(file)
+                                             : readFlo(file);
+  checkSize(f.flow, 2, file);
   const fs::path occ_path = framePath("flow0", k, "_occ.png");
   f.occluded = readPng8(occ_path);
   checkSize(f.occluded, 1, occ_path);
