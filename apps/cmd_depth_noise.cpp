@@ -1,9 +1,9 @@
 // interiornet depth-noise: Kinect-like noisy depth (sensors/depth_noise.h) for a written ASL
 // sequence: reads depth0/ (16-bit mm z-depth PNGs) and normal0/ (if present) and writes
-// depth0_noisy/data/<t>.png, depth0_noisy/data.csv and depth0_noisy/noise.yaml.
+// depth0_noisy/ through dataset/'s NoisyDepthFolder (data/<t>.png, noise.yaml, sensor.yaml,
+// data.csv last).
 #include <filesystem>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,8 +14,10 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/progress.h"
 #include "dataset/asl_writer.h"
 #include "dataset/image_encode.h"
+#include "dataset/sequence_writer.h"
 #include "render/lens.h"
 #include "sensors/depth_noise.h"
 
@@ -29,10 +31,6 @@ struct DepthNoiseArgs {
   uint64_t seed = 0;
   KinectNoiseOptions opts;
   bool no_shadow = false;
-};
-
-struct DepthFrame {
-  std::string stamp, file;
 };
 
 /// The intrinsics of meta.json (renderer convention) after checking the depth PNGs hold z-depth.
@@ -71,28 +69,6 @@ CameraIntrinsics readIntrinsics(const fs::path& meta_path) {
   }
 }
 
-/// Rows of depth0/data.csv ("#timestamp [ns],filename"), every line checked.
-std::vector<DepthFrame> readDepthCsv(const fs::path& path) {
-  std::istringstream in(readTextFile(path));
-  std::vector<DepthFrame> frames;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    const size_t comma = line.find(',');
-    DepthFrame f{line.substr(0, comma), comma == std::string::npos ? "" : line.substr(comma + 1)};
-    const bool digits =
-        !f.stamp.empty() && f.stamp.find_first_not_of("0123456789") == std::string::npos;
-    if (!digits || f.file.empty() || f.file.find('/') != std::string::npos ||
-        f.file.find(',') != std::string::npos || !f.file.ends_with(".png"))
-      throw InputError(path.string(), fmt::format("line {}", n),
-                       "expected '<timestamp ns>,<file>.png', got '" + line + "'");
-    frames.push_back(std::move(f));
-  }
-  if (frames.empty()) throw InputError(path.string(), "", "no frames listed");
-  return frames;
-}
-
 std::string noiseYaml(const DepthNoiseArgs& a, const CameraIntrinsics& K, bool normals) {
   const KinectNoiseOptions& o = a.opts;
   return fmt::format(
@@ -116,10 +92,10 @@ void runDepthNoise(DepthNoiseArgs a) {
   a.opts.validate("depth-noise options");
   const fs::path seq = a.sequence;
   const CameraIntrinsics K = readIntrinsics(seq / "meta.json");
-  const std::vector<DepthFrame> frames = readDepthCsv(seq / "depth0" / "data.csv");
   const bool have_normals = fs::is_directory(seq / "normal0" / "data");
-  const fs::path out = seq / "depth0_noisy";
-  std::string csv = std::string(kEurocCameraCsvHeader) + "\n";
+  const NoisyDepthFolder out(seq);  // dataset/ owns the folder and its "complete" rule
+  const std::vector<SequenceFrame>& frames = out.frames();
+  ProgressBar progress(static_cast<int64_t>(frames.size()), "frames");
   for (size_t k = 0; k < frames.size(); ++k) {
     const fs::path depth_path = seq / "depth0" / "data" / frames[k].file;
     const ImageF depth = decodeDepth16(readPng16(depth_path), kDepthScaleMm);
@@ -133,19 +109,16 @@ void runDepthNoise(DepthNoiseArgs a) {
       normal = decodeNormal16(readPng16(normal_path));
       if (normal.channels != 3 || normal.width != K.width || normal.height != K.height)
         throw InputError(normal_path.string(), "",
-                         "expected an RGB normal image of the "
-                         "depth's size");
+                         "expected an RGB normal image of the depth's size");
     }
-    const ImageF noisy =
-        kinectNoisyDepth(depth, normal, K, a.opts, a.seed, static_cast<uint32_t>(k));
-    writePng(out / "data" / frames[k].file, encodeDepth16(noisy, kDepthScaleMm));
-    csv += frames[k].stamp + "," + frames[k].file + "\n";
+    out.writeFrame(k, kinectNoisyDepth(depth, normal, K, a.opts, a.seed, static_cast<uint32_t>(k)));
+    progress.update(static_cast<int64_t>(k + 1));
   }
-  writeTextAtomic(out / "noise.yaml", noiseYaml(a, K, have_normals));
-  writeTextAtomic(out / "data.csv", csv);  // last: its presence means the folder is complete
+  progress.finish();
+  out.finish(noiseYaml(a, K, have_normals));
   fmt::print("wrote {} noisy depth frames ({}normals from {}) to {}/\n", frames.size(),
              a.opts.projector_shadow ? "projector shadow, " : "",
-             have_normals ? "normal0" : "depth0", out.string());
+             have_normals ? "normal0" : "depth0", (seq / "depth0_noisy").string());
 }
 
 }  // namespace
@@ -156,7 +129,7 @@ void registerDepthNoise(CLI::App& app) {
       "Kinect-like noisy depth for an ASL sequence (docs/sensors.md): projector shadow, "
       "grazing-angle, range and edge dropouts, lateral and axial noise (Nguyen et al. 2012), "
       "1/8 px disparity quantisation; reads SEQ/depth0 (+ SEQ/normal0), writes "
-      "SEQ/depth0_noisy/{data/<t>.png, data.csv, noise.yaml}");
+      "SEQ/depth0_noisy/{data/<t>.png, noise.yaml, sensor.yaml, data.csv}");
   auto a = std::make_shared<DepthNoiseArgs>();
   cmd->add_option("--sequence", a->sequence,
                   "sequence folder with meta.json and depth0/ (interiornet generate, asl format)")

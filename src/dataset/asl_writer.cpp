@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
@@ -316,6 +317,43 @@ std::string aslStamp(TimeNs t_ns) {
 
 std::unique_ptr<FormatWriter> makeAslWriter(std::shared_ptr<const SequenceContext> ctx) {
   return std::make_unique<AslWriter>(std::move(ctx));
+}
+
+std::string aslSensorComment(std::string_view folder) {
+  if (folder == "cam0" || folder == "depth0") return "";  // these depend on the lens and options
+  for (const AslSensor& sensor : kImageSensors)
+    if (folder == sensor.folder) return sensor.comment;
+  return "";
+}
+
+std::vector<SequenceFrame> readAslFrameList(const std::filesystem::path& csv) {
+  std::istringstream in(readTextFile(csv));
+  std::vector<SequenceFrame> frames;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const size_t comma = line.find(',');
+    SequenceFrame f;
+    f.stamp = line.substr(0, comma);
+    f.file = comma == std::string::npos ? "" : line.substr(comma + 1);
+    // 18 digits keep the stamp below 2^63 ns; the writer pads to 19 with leading zeros
+    const size_t digits_end = f.stamp.find_first_not_of('0');
+    const bool digits = !f.stamp.empty() &&
+                        f.stamp.find_first_not_of("0123456789") == std::string::npos &&
+                        (digits_end == std::string::npos || f.stamp.size() - digits_end <= 18);
+    if (!digits || f.file.empty() || f.file.find_first_of("/,") != std::string::npos)
+      throw InputError(csv.string(), fmt::format("line {}", n),
+                       "expected '<timestamp ns>,<file>', got '" + line + "'");
+    f.t_ns = std::stoll(f.stamp);
+    if (!frames.empty() && f.t_ns <= frames.back().t_ns)
+      throw InputError(csv.string(), fmt::format("line {}", n),
+                       fmt::format("timestamp {} does not increase (previous row {})", f.stamp,
+                                   frames.back().stamp));
+    frames.push_back(std::move(f));
+  }
+  if (frames.empty()) throw InputError(csv.string(), "", "no frames listed");
+  return frames;
 }
 
 }  // namespace inet

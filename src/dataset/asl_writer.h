@@ -23,8 +23,11 @@
 // intrinsics (sensor.yaml states them in the OpenCV convention) and lens: pinhole and thin lens
 // as Kalibr pinhole + radial-tangential, fisheye as Kalibr pinhole + equidistant (r = f theta),
 // panorama as "camera_model: equirectangular" with the pixel mapping in comments.
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/pose.h"
 #include "dataset/format_writer.h"
@@ -46,6 +49,21 @@ std::string aslStamp(TimeNs t_ns);
 /// A sensor.yaml T_BS block (sensor -> body) for a sensor translated by t from the body frame,
 /// same orientation; EuRoC's layout ("T_BS:", cols, rows, data in 4 rows).
 std::string translationTbs(const Vec3& t);
+
+/// One row of an ASL data.csv: the stamp and the file it names.
+struct SequenceFrame {
+  TimeNs t_ns = 0;
+  std::string stamp;  ///< the stamp as written, 19 digits: the stem of every file of the frame
+  std::string file;   ///< the file it names in <sensor>/data/ (no folder)
+};
+
+/// Rows of an ASL `<sensor>/data.csv` (`#timestamp [ns],filename`): every line checked, stamps
+/// strictly increasing; InputError naming the file and line otherwise, or when it lists nothing.
+std::vector<SequenceFrame> readAslFrameList(const std::filesystem::path& csv);
+
+/// The `comment:` of <folder>/sensor.yaml for the folders whose comment depends on nothing but
+/// the folder (normal0, albedo0, shading0, label0, depth0_noisy, flow0, flow0_bwd); "" for others.
+std::string aslSensorComment(std::string_view folder);
 
 /// Factory registered as "asl".
 std::unique_ptr<FormatWriter> makeAslWriter(std::shared_ptr<const SequenceContext> ctx);

@@ -458,6 +458,54 @@ void writeImuFolder(const fs::path& dir, const ImuSequence& seq, const ImuOption
   writeTextAtomic(out / kImuFiles[3], formatImuSensorYaml(opt, comment));
 }
 
+NoisyDepthFolder::NoisyDepthFolder(const fs::path& sequence)
+    : sequence_(sequence),
+      out_(sequence / "depth0_noisy"),
+      frames_(readAslFrameList(sequence / "depth0" / "data.csv")),
+      depth_yaml_(readTextFile(sequence / "depth0" / "sensor.yaml")) {
+  const fs::path csv = sequence / "depth0" / "data.csv";
+  for (size_t k = 0; k < frames_.size(); ++k)
+    if (frames_[k].file != frames_[k].stamp + ".png")
+      throw InputError(csv.string(), fmt::format("row {}", k + 1),
+                       fmt::format("expected the file {}.png (a depth PNG named by its stamp), "
+                                   "got '{}'",
+                                   frames_[k].stamp, frames_[k].file));
+  const size_t at = depth_yaml_.find("\ncomment: ");
+  if (at == std::string::npos)
+    throw InputError((sequence / "depth0" / "sensor.yaml").string(), "comment",
+                     "missing: not a sensor.yaml written by interiornet generate");
+  const size_t from = at + std::string("\ncomment: ").size();
+  depth_yaml_.replace(from, depth_yaml_.find('\n', from) - from,
+                      aslSensorComment("depth0_noisy"));
+  std::error_code ec;
+  fs::create_directories(out_ / "data", ec);
+  if (ec) throw InputError(out_.string(), "", "cannot create folder: " + ec.message());
+  fs::remove(out_ / "data.csv", ec);
+  if (ec) throw InputError((out_ / "data.csv").string(), "", "cannot remove: " + ec.message());
+}
+
+void NoisyDepthFolder::writeFrame(size_t k, const ImageF& depth_m) const {
+  writePng(out_ / "data" / frames_.at(k).file, encodeDepth16(depth_m, kDepthScaleMm));
+}
+
+void NoisyDepthFolder::finish(const std::string& noise_yaml) const {
+  std::string csv = std::string(kEurocCameraCsvHeader) + "\n";
+  for (const SequenceFrame& f : frames_) {
+    std::error_code ec;
+    if (!fs::is_regular_file(out_ / "data" / f.file, ec))
+      throw InputError((out_ / "data" / f.file).string(), "", "frame not written");
+    csv += f.stamp + "," + f.file + "\n";
+  }
+  writeTextAtomic(out_ / "noise.yaml", noise_yaml);
+  writeTextAtomic(out_ / "sensor.yaml", depth_yaml_);
+  writeTextAtomic(out_ / "data.csv", csv);  // last: its presence means the folder is complete
+}
+
+bool NoisyDepthFolder::complete(const fs::path& sequence) {
+  std::error_code ec;
+  return fs::is_regular_file(sequence / "depth0_noisy" / "data.csv", ec);
+}
+
 namespace {
 fs::path makeEventsFolders(const fs::path& dir) {
   const fs::path out = dir / "events0";

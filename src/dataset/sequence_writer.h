@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "dataset/boxes_json.h"
+#include "dataset/asl_writer.h"
 #include "dataset/format_writer.h"
 #include "sensors/event_io.h"
 #include "sensors/event_sim.h"
@@ -130,6 +131,33 @@ class EventsFolder {
   EventTextWriter txt_;
   EventH5Writer h5_;
   std::string csv_;
+};
+
+/// depth0_noisy/ made again for a written ASL sequence (`interiornet depth-noise`): the files
+/// generate writes for the depth_noisy pass, data/<t>.png (16-bit mm, each atomic), sensor.yaml
+/// (depth0's calibration under depth0_noisy's comment: the bytes generate writes) and data.csv,
+/// plus noise.yaml (the model's parameters; generate keeps them in meta.json). Opening removes
+/// data.csv, so a folder being rewritten is never taken for complete; finish() writes
+/// noise.yaml, sensor.yaml, then data.csv last: a folder with data.csv is complete.
+class NoisyDepthFolder {
+ public:
+  /// Reads <sequence>/depth0/data.csv and depth0/sensor.yaml (InputError naming the file when
+  /// missing or malformed; the rows must name <t>.png files), creates depth0_noisy/data/ and
+  /// removes depth0_noisy/data.csv.
+  explicit NoisyDepthFolder(const std::filesystem::path& sequence);
+  /// depth0's frames, in order: frame k is row k.
+  const std::vector<SequenceFrame>& frames() const { return frames_; }
+  /// Writes frame k (z-depth in metres, 0 = no return) as depth0_noisy/data/<file of row k>.
+  void writeFrame(size_t k, const ImageF& depth_m) const;
+  /// noise.yaml (`noise_yaml`), sensor.yaml, then data.csv. Every frame must have been written.
+  void finish(const std::string& noise_yaml) const;
+  /// True if <sequence>/depth0_noisy/ is complete (its data.csv exists).
+  static bool complete(const std::filesystem::path& sequence);
+
+ private:
+  std::filesystem::path sequence_, out_;
+  std::vector<SequenceFrame> frames_;
+  std::string depth_yaml_;
 };
 
 /// Writes <dir>/imu0/ (the files of SequenceWriter::writeImu) outside a sequence folder

@@ -17,36 +17,6 @@ namespace inet {
 
 namespace fs = std::filesystem;
 
-std::vector<SequenceFrame> readAslFrameList(const fs::path& csv) {
-  std::istringstream in(readTextFile(csv));
-  std::vector<SequenceFrame> frames;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    const size_t comma = line.find(',');
-    SequenceFrame f;
-    f.stamp = line.substr(0, comma);
-    const std::string file = comma == std::string::npos ? "" : line.substr(comma + 1);
-    // 18 digits keep the stamp below 2^63 ns; the writer pads to 19 with leading zeros
-    const size_t digits_end = f.stamp.find_first_not_of('0');
-    const bool digits = !f.stamp.empty() &&
-                        f.stamp.find_first_not_of("0123456789") == std::string::npos &&
-                        (digits_end == std::string::npos || f.stamp.size() - digits_end <= 18);
-    if (!digits || file.empty() || file.find_first_of("/,") != std::string::npos)
-      throw InputError(csv.string(), fmt::format("line {}", n),
-                       "expected '<timestamp ns>,<file>', got '" + line + "'");
-    f.t_ns = std::stoll(f.stamp);
-    if (!frames.empty() && f.t_ns <= frames.back().t_ns)
-      throw InputError(csv.string(), fmt::format("line {}", n),
-                       fmt::format("timestamp {} does not increase (previous row {})", f.stamp,
-                                   frames.back().stamp));
-    frames.push_back(std::move(f));
-  }
-  if (frames.empty()) throw InputError(csv.string(), "", "no frames listed");
-  return frames;
-}
-
 SequenceReader::SequenceReader(const fs::path& dir) : dir_(dir) {
   std::error_code ec;
   if (!fs::is_directory(dir_, ec))

@@ -27,18 +27,13 @@
 
 #include "core/image.h"
 #include "core/pose.h"
+#include "dataset/asl_writer.h"
 #include "render/camera.h"
 #include "render/frame.h"
 #include "render/lens.h"
 #include "trajectory/trajectory.h"
 
 namespace inet {
-
-/// One row of an ASL data.csv: the stamp and the file it names.
-struct SequenceFrame {
-  TimeNs t_ns = 0;
-  std::string stamp;  ///< the stamp as written, 19 digits: the stem of every file of the frame
-};
 
 class SequenceReader {
  public:
@@ -89,9 +84,5 @@ class SequenceReader {
   LensType lens_ = LensType::Pinhole;
   std::vector<SequenceFrame> frames_;
 };
-
-/// Rows of an ASL `<sensor>/data.csv` (`#timestamp [ns],filename`): every line checked, stamps
-/// strictly increasing; InputError naming the file and line otherwise, or when it lists nothing.
-std::vector<SequenceFrame> readAslFrameList(const std::filesystem::path& csv);
 
 }  // namespace inet

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -56,14 +57,28 @@ TEST(CliTrajectory, GenerateOnAGeneratedLayoutFindsItsOwnPath) {
     if (name.size() > 9 && name.compare(name.size() - 9, 9, "meta.json") == 0)
       seq = (dir / "out" / name.substr(0, name.size() - 10)).string();
   ASSERT_FALSE(seq.empty());
+  const std::filesystem::path noisy_dir = std::filesystem::path(seq) / "depth0_noisy";
+  const auto generated = readTree(noisy_dir);
   RunResult noisy = runInterinet("depth-noise --sequence " + seq + " --seed 4");
   ASSERT_EQ(noisy.exit_code, 0) << noisy.err;
-  const auto first = readTree(std::filesystem::path(seq) / "depth0_noisy");
-  // generate wrote depth0_noisy/ already (a default pass, with its sensor.yaml); depth-noise
-  // redoes its frames with another seed
+  const auto first = readTree(noisy_dir);
+  // generate wrote depth0_noisy/ already (a default pass); depth-noise redoes its frames with
+  // another seed through the same writer: the same sensor.yaml and data.csv, plus noise.yaml
   EXPECT_EQ(first.size(), 3u + 3u) << "3 frames, data.csv, noise.yaml, sensor.yaml";
+  EXPECT_EQ(first.at("sensor.yaml"), generated.at("sensor.yaml"));
+  EXPECT_EQ(first.at("data.csv"), generated.at("data.csv"));
+  EXPECT_EQ(generated.count("noise.yaml"), 0u);
   ASSERT_EQ(runInterinet("depth-noise --sequence " + seq + " --seed 4").exit_code, 0);
-  EXPECT_EQ(readTree(std::filesystem::path(seq) / "depth0_noisy"), first);
+  EXPECT_EQ(readTree(noisy_dir), first);
+  // a remake that fails half-way leaves the folder marked incomplete (no data.csv), and says
+  // which file stopped it
+  const auto last_depth = std::filesystem::path(seq) / "depth0" / "data" /
+                          std::prev(first.end(), 3)->first.substr(5);  // data/<t>.png
+  ASSERT_TRUE(std::filesystem::remove(last_depth)) << last_depth;
+  noisy = runInterinet("depth-noise --sequence " + seq + " --seed 5");
+  EXPECT_NE(noisy.exit_code, 0);
+  EXPECT_NE(noisy.err.find(last_depth.string()), std::string::npos) << noisy.err;
+  EXPECT_FALSE(std::filesystem::exists(noisy_dir / "data.csv"));
 }
 
 TEST(CliTrajectory, GenerateConvertShowAndScore) {
