@@ -239,6 +239,7 @@ void registerEval(CLI::App& app) {
   rpe->callback([rpe_args] { runRpe(*rpe_args); });
 
   addSequenceEvalCommands(eval);
+  addSlamEvalCommand(eval);
 }
 
 }  // namespace inet::app

@@ -68,5 +68,7 @@ void registerDatasetShards(CLI::App& dataset_cmd);
 void addTrajectoryConvertCommand(CLI::App* trajectory_cmd);
 void addTrainStyleCommand(CLI::App* trajectory_cmd);
 void addSequenceEvalCommands(CLI::App* eval_cmd);
+/// `eval slam` (cmd_eval_slam.cpp).
+void addSlamEvalCommand(CLI::App* eval_cmd);
 
 }  // namespace inet::app

@@ -45,6 +45,17 @@ Pose poseFromCv(const cv::Mat& Rt) {
   return p;
 }
 
+/// A Pose as a 4x4 CV_64F rigid transform (compute()'s initRt).
+cv::Mat poseToCv(const Pose& p) {
+  cv::Mat Rt = cv::Mat::eye(4, 4, CV_64FC1);
+  const Mat3 R = p.q.toRotationMatrix();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) Rt.at<double>(r, c) = R(r, c);
+    Rt.at<double>(r, 3) = p.t[r];
+  }
+  return Rt;
+}
+
 /// One used frame as OpenCV's odometry wants it.
 struct CvFrame {
   cv::Mat grey, depth;
@@ -106,6 +117,17 @@ const char* odometryMethodName(OdometryMethod m) {
   INET_CHECK(false);
 }
 
+OdometryReference parseOdometryReference(const std::string& name, const std::string& field) {
+  if (name == "frame") return OdometryReference::Previous;
+  if (name == "keyframe") return OdometryReference::Keyframe;
+  throw InputError("", field,
+                   fmt::format("unknown reference '{}' (valid: frame, keyframe)", name));
+}
+
+const char* odometryReferenceName(OdometryReference r) {
+  return r == OdometryReference::Previous ? "frame" : "keyframe";
+}
+
 void OdometryOptions::validate() const {
   if (!(max_step_m > 0) || !std::isfinite(max_step_m))
     throw InputError("", "odometry.max_step_m", fmt::format("must be > 0 m, got {}", max_step_m));
@@ -113,6 +135,11 @@ void OdometryOptions::validate() const {
     throw InputError("", "odometry.max_step_deg",
                      fmt::format("must be in (0, 180] degrees, got {}", max_step_deg));
   if (stride < 1) throw InputError("", "odometry.stride", "must be at least 1");
+  if (!(keyframe_m >= 0) || !std::isfinite(keyframe_m))
+    throw InputError("", "odometry.keyframe_m", fmt::format("must be >= 0 m, got {}", keyframe_m));
+  if (!(keyframe_deg >= 0) || !(keyframe_deg <= 180))
+    throw InputError("", "odometry.keyframe_deg",
+                     fmt::format("must be in [0, 180] degrees, got {}", keyframe_deg));
   if (max_frames == 1 || max_frames == 2)
     throw InputError("", "odometry.max_frames",
                      fmt::format("{} frames: SE(3) alignment needs at least 3", max_frames));
@@ -120,8 +147,10 @@ void OdometryOptions::validate() const {
 
 std::string OdometryOptions::toString() const {
   return fmt::format(
-      "OdometryOptions[method={} max_step_m={} max_step_deg={} stride={} max_frames={}]",
-      odometryMethodName(method), max_step_m, max_step_deg, stride, max_frames);
+      "OdometryOptions[method={} reference={} keyframe_m={} keyframe_deg={} max_step_m={} "
+      "max_step_deg={} stride={} max_frames={}]",
+      odometryMethodName(method), odometryReferenceName(reference), keyframe_m, keyframe_deg,
+      max_step_m, max_step_deg, stride, max_frames);
 }
 
 OdometryResult rgbdOdometry(const std::filesystem::path& sequence, const OdometryOptions& opt) {
@@ -144,8 +173,10 @@ OdometryResult rgbdOdometry(const std::filesystem::path& sequence, const Odometr
   res.options = opt;
   res.ground_truth.poses.push_back(gt_all.poses[used[0]]);
   res.estimate.poses.push_back(gt_all.poses[used[0]]);
-  Pose velocity;  // the last step T_i_j, for bridging; identity until the first one
-  CvFrame prev = loadFrame(seq, used[0]);
+  Pose velocity;  // the last frame-to-frame motion, for bridging; identity until the first
+  CvFrame ref = loadFrame(seq, used[0]);
+  Pose T_world_ref = gt_all.poses[used[0]].T_world_camera;
+  bool ref_is_prev = true;  // the reference is the frame before the current one
   const cv::Mat no_mask;  // OpenCV derives the mask from the valid depth range
   for (size_t n = 1; n < used.size(); ++n) {
     const size_t j = used[n];
@@ -153,27 +184,41 @@ OdometryResult rgbdOdometry(const std::filesystem::path& sequence, const Odometr
     OdometryStep step;
     step.frame = j;
     cv::Mat Rt;
+    const Pose T_world_prev = res.estimate.poses.back().T_world_camera;
+    // the first guess: where constant velocity puts the frame, seen from the reference (a
+    // keyframe may be many frames back; OpenCV's own default, identity, suits the previous
+    // frame, and frame-to-frame keeps it)
+    const cv::Mat init = ref_is_prev ? cv::Mat()
+                                     : poseToCv(T_world_ref.inverse() * T_world_prev * velocity);
     const auto t0 = Clock::now();
-    // src = the new frame, dst = the previous one: Rt = T_prev_new (see the header)
-    step.converged =
-        odometry->compute(cur.grey, cur.depth, no_mask, prev.grey, prev.depth, no_mask, Rt);
+    // src = the new frame, dst = the reference: Rt = T_ref_new (see the header)
+    step.converged = odometry->compute(cur.grey, cur.depth, no_mask, ref.grey, ref.depth,
+                                       no_mask, Rt, init);
     step.seconds = secondsSince(t0);
     res.odometry_seconds += step.seconds;
-    Pose T_i_j = velocity;
+    Pose T_world_j = T_world_prev * velocity;
+    Pose measured;
     if (step.converged) {
-      const Pose measured = poseFromCv(Rt);
+      measured = poseFromCv(Rt);
       step.translation_m = measured.t.norm();
       step.rotation_deg = rotationAngleDeg(measured.q);
       step.tracked = step.translation_m < opt.max_step_m && step.rotation_deg < opt.max_step_deg;
-      if (step.tracked) T_i_j = measured;
+      if (step.tracked) T_world_j = T_world_ref * measured;
     }
     res.tracked += step.tracked;
-    velocity = T_i_j;
-    const Pose T_world_j = res.estimate.poses.back().T_world_camera * T_i_j;
+    // frame-to-frame keeps the measured step itself (the same bytes as before keyframes)
+    if (step.tracked) velocity = ref_is_prev ? measured : T_world_prev.inverse() * T_world_j;
+    step.keyframe = opt.reference == OdometryReference::Previous || !step.tracked ||
+                    step.translation_m > opt.keyframe_m || step.rotation_deg > opt.keyframe_deg;
     res.estimate.poses.push_back({gt_all.poses[j].t_ns, T_world_j});
     res.ground_truth.poses.push_back(gt_all.poses[j]);
     res.steps.push_back(step);
-    prev = std::move(cur);
+    ref_is_prev = step.keyframe;
+    if (step.keyframe) {
+      ref = std::move(cur);
+      T_world_ref = T_world_j;
+      ++res.keyframes;
+    }
   }
   AteOptions ate;
   ate.align = AlignMode::SE3;

@@ -25,8 +25,14 @@
 // default) and the step passes our plausibility gate: translation < max_step_m (0.5 m) and
 // rotation < max_step_deg (30 deg). The gate catches a converged but absurd step; with OpenCV's
 // defaults its own limits are the tighter ones. An untracked step is bridged with constant
-// velocity: the previous step again (identity before the first one), so the trajectory keeps
-// one pose per frame and the ATE sees the cost of the loss.
+// velocity: the previous frame-to-frame motion again (identity before the first one), so the
+// trajectory keeps one pose per frame and the ATE sees the cost of the loss.
+//
+// Reference frame. frame-to-frame (OdometryReference::Previous) registers each frame to the
+// one before it. frame-to-keyframe (Keyframe) registers it to the current keyframe, which
+// stays until a tracked frame lies more than keyframe_m (0.1 m) or keyframe_deg (10 deg) from
+// it, or a frame is lost; that frame (at its bridged pose, if lost) becomes the next keyframe.
+// Drift then grows per keyframe instead of per frame.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -38,13 +44,22 @@
 namespace inet {
 
 enum class OdometryMethod { Rgbd, Icp, RgbdIcp };
+/// What each frame is registered to (see the header comment).
+enum class OdometryReference { Previous, Keyframe };
 
 /// "rgbd", "icp" or "rgbd-icp"; InputError naming `field` and listing them otherwise.
 OdometryMethod parseOdometryMethod(const std::string& name, const std::string& field = "--method");
 const char* odometryMethodName(OdometryMethod m);
+/// "frame" (frame-to-frame) or "keyframe"; InputError naming `field` otherwise.
+OdometryReference parseOdometryReference(const std::string& name,
+                                         const std::string& field = "--reference-frame");
+const char* odometryReferenceName(OdometryReference r);
 
 struct OdometryOptions {
   OdometryMethod method = OdometryMethod::Rgbd;
+  OdometryReference reference = OdometryReference::Previous;
+  double keyframe_m = 0.1;     ///< Keyframe: a new keyframe beyond this distance, metres
+  double keyframe_deg = 10.0;  ///< Keyframe: ... or beyond this rotation, degrees
   double max_step_m = 0.5;     ///< plausibility gate: translation per step, metres
   double max_step_deg = 30.0;  ///< plausibility gate: rotation per step, degrees
   size_t stride = 1;           ///< use frames 0, stride, 2 stride, ...
@@ -61,6 +76,7 @@ struct OdometryStep {
   bool tracked = false;                        ///< converged and inside the plausibility gate
   double translation_m = 0, rotation_deg = 0;  ///< of compute()'s step (0 when not converged)
   double seconds = 0;                          ///< compute() wall time
+  bool keyframe = false;                       ///< the frame became the reference
 };
 
 struct OdometryResult {
@@ -70,6 +86,7 @@ struct OdometryResult {
   Trajectory ground_truth;          ///< the same frames' ground truth
   std::vector<OdometryStep> steps;  ///< one per used frame after the first
   size_t tracked = 0;               ///< steps tracked
+  size_t keyframes = 1;             ///< reference frames used (the first frame is one)
   AteResult ate;                    ///< estimate vs ground truth, SE(3)-aligned (Umeyama)
   /// The same without alignment. The estimate starts at the ground truth's first pose, so this
   /// is the drift accumulated from there. Its rotation is the one to read: the alignment fits
