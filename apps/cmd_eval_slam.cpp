@@ -160,6 +160,11 @@ void addSlamEvalCommand(CLI::App* eval) {
                     "procedural:5)");
   paper->add_option("--v-mult", o.v_grid, "part b: v multipliers (default 1 3 5 9)");
   paper->add_option("--w-mult", o.w_grid, "part b: w multipliers (default 1 3 5 9)");
+  paper->add_option("--lighting", o.lighting,
+                    "part a: the relit configuration lighting:N (default 1)");
+  paper->add_option("--rearranged", o.rearranged,
+                    "part a: the rearranged configuration rearranged:N (default 5: 6 of the "
+                    "default apartment's 15 movable objects pushed)");
   paper->add_option("--systems", o.systems,
                     "built-in systems (default opencv-rgbd opencv-icp)");
   paper->add_option("--reference-frame", e->reference,

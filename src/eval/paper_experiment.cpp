@@ -89,7 +89,10 @@ std::vector<SequencePlan> planSequences(const PaperExperimentOptions& o) {
     q.configs.insert(configs.begin(), configs.end());
   };
   const auto has = [&](char c) { return o.parts.find(c) != std::string::npos; };
-  if (has('a')) add(o.apartment, "two-body", 1, 1, {"original", "lighting:1", "rearranged:1"});
+  if (has('a'))
+    add(o.apartment, "two-body", 1, 1,
+        {"original", fmt::format("lighting:{}", o.lighting),
+         fmt::format("rearranged:{}", o.rearranged)});
   if (has('b'))
     for (double v : o.v_grid)
       for (double w : o.w_grid) add(o.apartment, "two-body", v, w, {"original"});
@@ -234,6 +237,8 @@ void PaperExperimentOptions::validate() const {
   if (!(fps > 0)) throw InputError("", "--fps", "must be > 0");
   if (width < 16 || height < 16) throw InputError("", "--width", "at least 16 x 16 pixels");
   if (spp < 1) throw InputError("", "--spp", "at least 1");
+  if (lighting < 0) throw InputError("", "--lighting", "a seed, >= 0");
+  if (rearranged < 0) throw InputError("", "--rearranged", "a seed, >= 0");
 }
 
 PaperExperimentResult runPaperExperiment(const PaperExperimentOptions& o) {
@@ -315,6 +320,8 @@ PaperExperimentResult runPaperExperiment(const PaperExperimentOptions& o) {
               {"layouts", o.layouts},
               {"v", o.v_grid},
               {"w", o.w_grid},
+              {"lighting", o.lighting},
+              {"rearranged", o.rearranged},
               {"systems", o.systems},
               {"reference", odometryReferenceName(o.reference)},
               {"frames", o.frames},

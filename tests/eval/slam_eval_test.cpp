@@ -201,7 +201,7 @@ TEST(PaperExperiment, ATinyRunWritesEveryTableRowAndPlot) {
   const test::RunResult r = test::runInterinet(
       "eval experiment paper --out " + out.string() +
       " --apartment builtin:room --layouts builtin:room --v-mult 1 3 --w-mult 1 --frames 8 "
-      "--width 64 --height 48 --spp 1");
+      "--width 64 --height 48 --spp 1 --rearranged 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string csv = readTextFile(out / "results.csv");
   // rows per system: a 3 + b 2 + c 3 + d 1 = 9, two systems
@@ -225,7 +225,7 @@ TEST(PaperExperiment, ATinyRunWritesEveryTableRowAndPlot) {
   const test::RunResult again = test::runInterinet(
       "eval experiment paper --out " + out.string() +
       " --apartment builtin:room --layouts builtin:room --v-mult 1 3 --w-mult 1 --frames 8 "
-      "--width 64 --height 48 --spp 1");
+      "--width 64 --height 48 --spp 1 --rearranged 1");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(readTextFile(out / "table.md"), table);
 }
