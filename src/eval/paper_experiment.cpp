@@ -307,7 +307,7 @@ PaperExperimentResult runPaperExperiment(const PaperExperimentOptions& o) {
                           100 * row.score.ate_se3.translation_m.rmse, paletteColour(int(i))});
     PlotSpec spec;
     spec.title = "The same two-body (1, 1) trajectory type and seed through several layouts";
-    spec.y_label = "ATE (cm)";
+    spec.y_label = "layout, system";
     spec.horizontal = true;
     spec.x_label = "ATE (cm)";
     writeBarChartPng(o.out / "layouts.png", spec, bars);
