@@ -11,13 +11,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <sstream>
 #include <system_error>
 #include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -69,86 +69,64 @@ bool parseDouble(const std::string& text, double& out) {
   return end == s.c_str() + s.size() && errno == 0 && std::isfinite(out);
 }
 
-/// The top-level keys of an EuRoC sensor.yaml. It has no %YAML line, so OpenCV's reader does not
-/// take it, and a line reader can name the line of a bad value. A key's value is the rest of its
-/// line plus the indented lines below it (T_BS's cols, rows and multi-line data list); comments
-/// ('#' at a line start or after a blank) are dropped.
+/// The top-level keys of an EuRoC / Kalibr sensor.yaml, read with yaml-cpp (OpenCV's
+/// FileStorage wants a %YAML line, which these files do not have). Errors name the key and the
+/// line of its value.
 class SensorYaml {
  public:
   explicit SensorYaml(const fs::path& path) : path_(path.string()) {
-    std::istringstream in(readTextFile(path));
-    std::string line, key;
-    for (int n = 1; std::getline(in, line); ++n) {
-      for (size_t i = 0; i < line.size(); ++i)
-        if (line[i] == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t')) {
-          line.resize(i);
-          break;
-        }
-      if (trim(line).empty()) continue;
-      if (line[0] == ' ' || line[0] == '\t') {
-        if (!key.empty()) values_[key].text += " " + trim(line);
-        continue;
-      }
-      const size_t colon = line.find(':');
-      if (colon == std::string::npos)
-        throw InputError(path_, fmt::format("line {}", n),
-                         "expected 'key: value', got '" + trim(line) + "'");
-      key = trim(line.substr(0, colon));
-      values_[key] = {trim(line.substr(colon + 1)), n};
+    try {
+      root_ = YAML::Load(readTextFile(path));
+    } catch (const YAML::Exception& e) {
+      throw InputError(path_, fmt::format("line {}", e.mark.line + 1), e.msg);
     }
+    if (!root_.IsMap()) throw InputError(path_, "", "expected 'key: value' lines");
   }
 
-  bool has(const std::string& key) const { return values_.count(key) != 0; }
+  bool has(const std::string& key) const { return static_cast<bool>(root_[key]); }
 
-  const std::string& text(const std::string& key) const { return value(key).text; }
+  std::string text(const std::string& key) const {
+    const YAML::Node v = value(key);
+    if (!v.IsScalar())
+      throw InputError(path_, key, fmt::format("line {}: expected a single value", line(v)));
+    return v.Scalar();
+  }
 
   double number(const std::string& key) const {
     double v;
-    if (!parseDouble(value(key).text, v))
+    if (!parseDouble(text(key), v))
       throw InputError(path_, key,
-                       fmt::format("line {}: not a number: '{}'", value(key).line, text(key)));
+                       fmt::format("line {}: not a number: '{}'", line(value(key)), text(key)));
     return v;
   }
 
   /// The numbers of the [...] list of `key` (of its `data:` for a matrix block); exactly n.
   std::vector<double> numbers(const std::string& key, size_t n) const {
-    const Value& v = value(key);
-    const size_t data = v.text.find("data:");
-    const size_t open = v.text.find('[', data == std::string::npos ? 0 : data);
-    const size_t close = v.text.find(']', open == std::string::npos ? 0 : open);
+    YAML::Node v = value(key);
+    if (v.IsMap() && v["data"]) v = v["data"];
     std::vector<double> out;
-    bool ok = open != std::string::npos && close != std::string::npos;
-    if (ok) {
-      std::string list = v.text.substr(open + 1, close - open - 1);
-      std::replace(list.begin(), list.end(), ',', ' ');
-      std::istringstream in(list);
-      std::string token;
+    bool ok = v.IsSequence() && v.size() == n;
+    for (size_t i = 0; ok && i < n; ++i) {
       double x = 0;
-      while (ok && in >> token) {
-        ok = parseDouble(token, x);
-        out.push_back(x);
-      }
+      ok = v[i].IsScalar() && parseDouble(v[i].Scalar(), x);
+      out.push_back(x);
     }
-    if (!ok || out.size() != n)
-      throw InputError(
-          path_, key,
-          fmt::format("line {}: expected a list of {} numbers, got '{}'", v.line, n, v.text));
+    if (!ok)
+      throw InputError(path_, key,
+                       fmt::format("line {}: expected a list of {} numbers", line(v), n));
     return out;
   }
 
  private:
-  struct Value {
-    std::string text;
-    int line = 0;
-  };
-  const Value& value(const std::string& key) const {
-    const auto it = values_.find(key);
-    if (it == values_.end()) throw InputError(path_, key, "missing");
-    return it->second;
+  YAML::Node value(const std::string& key) const {
+    const YAML::Node v = root_[key];
+    if (!v) throw InputError(path_, key, "missing");
+    return v;
   }
+  static int line(const YAML::Node& v) { return v.Mark().line + 1; }
 
   std::string path_;
-  std::map<std::string, Value> values_;
+  YAML::Node root_;
 };
 
 bool nearlyEqual(double a, double b) {
