@@ -27,9 +27,35 @@ struct SlamArgs {
   std::string reference = "keyframe";
   std::string exe, vocabulary, input = "rgbd";
   double time_limit_s = 3600;
+  std::string config;
   SlamEvalOptions opt;
   bool json = false;
 };
+
+/// --config: CLI11 2.1 reads a config file for the top-level command only, so a subcommand's is
+/// applied here, with CLI11's own TOML/INI reader: every `key = value` sets the option --key
+/// unless the command line gave it (InputError naming the file and key otherwise).
+void applyConfigFile(CLI::App& cmd, const std::string& path) {
+  std::vector<CLI::ConfigItem> items;
+  try {
+    items = CLI::ConfigTOML().from_file(path);
+  } catch (const CLI::Error& e) {
+    throw InputError(path, "", e.what());
+  }
+  for (const CLI::ConfigItem& item : items) {
+    if (item.name == "++" || item.name == "--") continue;  // section markers
+    CLI::Option* op = cmd.get_option_no_throw("--" + item.name);
+    if (!op || !item.parents.empty() || item.name == "config")
+      throw InputError(path, item.fullname(), "not an option of eval slam");
+    if (op->count() > 0) continue;  // the command line wins
+    try {
+      op->add_result(item.inputs);
+      op->run_callback();
+    } catch (const CLI::Error& e) {
+      throw InputError(path, item.name, e.what());
+    }
+  }
+}
 
 std::string cellOf(double v, const char* unit, double scale) {
   return std::isfinite(v) ? fmt::format("{:.3f} {}", scale * v, unit) : "-";
@@ -131,11 +157,14 @@ void addSlamEvalCommand(CLI::App* eval) {
                   "external: rgbd (default), stereo, mono, mono-inertial or stereo-inertial");
   cmd->add_option("--time-limit", a->time_limit_s,
                   "external: kill the system after this many seconds (default 3600)");
-  cmd->set_config("--config", "",
+  cmd->add_option("--config", a->config,
                   "read these options from a TOML or INI file (e.g. exe = \"...\", "
                   "vocabulary = \"...\"); options on the command line win");
   cmd->add_flag("--json", a->json, "print the score as one JSON object");
-  cmd->callback([a] { runSlam(*a); });
+  cmd->callback([a, cmd] {
+    if (!a->config.empty()) applyConfigFile(*cmd, a->config);
+    runSlam(*a);
+  });
 
   auto* exp = eval->add_subcommand("experiment", "Reproduce an evaluation of the paper");
   exp->require_subcommand(1);

@@ -180,6 +180,21 @@ TEST_F(SlamEval, CliWritesTheReportAndRefusesBadInput) {
   EXPECT_NEAR(nlohmann::json::parse(r.out)["ate_se3"]["translation_m"]["rmse"].get<double>(),
               j["ate_se3"]["translation_m"]["rmse"].get<double>(), 1e-6);
 
+  // the options from a TOML file (--config); the command line wins over it
+  writeTextAtomic(*dir_ / "icp.toml", "system = \"opencv-rgbd\"\nmax-frames = 4\n");
+  r = test::runInterinet("eval slam --config " + (*dir_ / "icp.toml").string() +
+                         " --system opencv-icp --sequence " + seq_->string() + " --out " +
+                         (*dir_ / "from_toml").string() + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["system"], "opencv-icp");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["tracked"].get<size_t>(), 4u);
+  writeTextAtomic(*dir_ / "typo.toml", "sytem = \"opencv-icp\"\n");
+  r = test::runInterinet("eval slam --config " + (*dir_ / "typo.toml").string() +
+                         " --sequence " + seq_->string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("typo.toml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("sytem"), std::string::npos) << r.err;
+
   writeTextAtomic(*dir_ / "bad.csv", "not,a,trajectory\n");
   r = test::runInterinet("eval slam --estimate " + (*dir_ / "bad.csv").string() +
                          " --sequence " + seq_->string() + " --out " + (*dir_ / "bad").string());
