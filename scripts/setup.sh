@@ -18,6 +18,7 @@ PACKAGES=(
   libzip-dev sweethome3d-furniture libgeos-dev
   libsqlite3-dev libopenmpi-dev openmpi-bin
   libarchive-dev
+  libcpp-httplib-dev
 )
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).
