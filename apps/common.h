@@ -55,6 +55,8 @@ void registerVary(CLI::App& app);
 void registerDenoiser(CLI::App& app);
 void registerAssets(CLI::App& app);
 void registerDataset(CLI::App& app);
+/// `studio` (cmd_studio.cpp): the web designer's server (src/studio/).
+void registerStudio(CLI::App& app);
 /// `dataset stats` (cmd_dataset_stats.cpp), added to the `dataset` command by registerDataset.
 void registerDatasetStats(CLI::App& dataset_cmd);
 /// `dataset shards` (cmd_dataset_shards.cpp), added to the `dataset` command by registerDataset.

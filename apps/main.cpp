@@ -32,5 +32,6 @@ int main(int argc, char** argv) {
   inet::app::registerDenoiser(app);
   inet::app::registerAssets(app);
   inet::app::registerDataset(app);
+  inet::app::registerStudio(app);
   return inet::app::runCli(app, argc, argv);
 }

@@ -55,9 +55,10 @@ bool isLoopbackHost(const std::string& host) {
   bool all = true;
   char buf[INET6_ADDRSTRLEN];
   for (addrinfo* a = res; a != nullptr && all; a = a->ai_next) {
-    const void* addr = a->ai_family == AF_INET
-                           ? static_cast<const void*>(&reinterpret_cast<sockaddr_in*>(a->ai_addr)->sin_addr)
-                           : static_cast<const void*>(&reinterpret_cast<sockaddr_in6*>(a->ai_addr)->sin6_addr);
+    const void* addr =
+        a->ai_family == AF_INET
+            ? static_cast<const void*>(&reinterpret_cast<sockaddr_in*>(a->ai_addr)->sin_addr)
+            : static_cast<const void*>(&reinterpret_cast<sockaddr_in6*>(a->ai_addr)->sin6_addr);
     all = inet_ntop(a->ai_family, addr, buf, sizeof buf) != nullptr && isLoopbackLiteral(buf);
   }
   freeaddrinfo(res);

@@ -11,15 +11,24 @@ namespace fs = std::filesystem;
 
 const char* pathRefusalName(PathRefusal r) {
   switch (r) {
-    case PathRefusal::None: return "accepted";
-    case PathRefusal::BadEncoding: return "malformed escape or control character";
-    case PathRefusal::NulByte: return "NUL byte";
-    case PathRefusal::Backslash: return "backslash";
-    case PathRefusal::Absolute: return "absolute path";
-    case PathRefusal::DotDot: return "'..' component";
-    case PathRefusal::Hidden: return "hidden component";
-    case PathRefusal::OutsideRoot: return "outside the root";
-    case PathRefusal::NotFound: return "no such file";
+    case PathRefusal::None:
+      return "accepted";
+    case PathRefusal::BadEncoding:
+      return "malformed escape or control character";
+    case PathRefusal::NulByte:
+      return "NUL byte";
+    case PathRefusal::Backslash:
+      return "backslash";
+    case PathRefusal::Absolute:
+      return "absolute path";
+    case PathRefusal::DotDot:
+      return "'..' component";
+    case PathRefusal::Hidden:
+      return "hidden component";
+    case PathRefusal::OutsideRoot:
+      return "outside the root";
+    case PathRefusal::NotFound:
+      return "no such file";
   }
   return "?";
 }

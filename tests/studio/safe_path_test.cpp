@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "studio/loopback.h"
 #include "../temp_dir.h"
+#include "studio/loopback.h"
 
 namespace inet::studio {
 namespace {
@@ -33,7 +33,7 @@ TEST_F(SafePathTest, AcceptsFilesInside) {
   const ResolvedPath p = resolveBelowRoot(root, "index.html");
   ASSERT_TRUE(p.ok()) << pathRefusalName(p.refusal);
   EXPECT_EQ(p.path, fs::canonical(root / "index.html"));
-  EXPECT_TRUE(resolveBelowRoot(root, "sub/a%20b.json").ok());  // decoded once
+  EXPECT_TRUE(resolveBelowRoot(root, "sub/a%20b.json").ok());   // decoded once
   EXPECT_TRUE(resolveBelowRoot(root, "sub//a%20b.json").ok());  // an empty component is nothing
   EXPECT_EQ(resolveBelowRoot(root, "./index.html").refusal, PathRefusal::Hidden);  // "." too
   // a symlink that stays inside is followed
@@ -49,8 +49,7 @@ TEST_F(SafePathTest, RefusesTraversal) {
   EXPECT_EQ(resolveBelowRoot(root, "%2E%2E%2Foutside%2Fsecret.txt").refusal, PathRefusal::DotDot);
   EXPECT_EQ(resolveBelowRoot(root, "sub/..").refusal, PathRefusal::DotDot);
   // decoded exactly once: "%252e%252e" is the literal name "%2e%2e", which does not exist
-  EXPECT_EQ(resolveBelowRoot(root, "%252e%252e/outside/secret.txt").refusal,
-            PathRefusal::NotFound);
+  EXPECT_EQ(resolveBelowRoot(root, "%252e%252e/outside/secret.txt").refusal, PathRefusal::NotFound);
 }
 
 TEST_F(SafePathTest, RefusesAbsoluteBackslashNulAndBadEscapes) {

@@ -1,0 +1,112 @@
+// interiornet studio: the interactive designer (the paper's ViSim) as a web page served by this
+// binary (src/studio/). This file only parses options.
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "assets/catalog_library.h"
+#include "common.h"
+#include "core/error.h"
+#include "studio/server.h"
+#include "studio/studio_layout.h"
+
+namespace inet::app {
+namespace {
+
+struct StudioArgs {
+  SceneSource scene;
+  studio::StudioOptions opt;
+  std::string web;
+  std::vector<std::string> data;  ///< NAME=DIR
+  size_t max_body_kib = 1024;
+};
+
+/// "--data NAME=DIR" into the options' data roots.
+void addDataRoots(const std::vector<std::string>& specs, studio::StudioOptions& opt) {
+  for (const std::string& s : specs) {
+    const size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
+      throw InputError("", "--data", "'" + s + "' is not NAME=DIR");
+    const std::string name = s.substr(0, eq);
+    if (opt.data_roots.count(name) != 0)
+      throw InputError("", "--data", "the name '" + name + "' is given twice");
+    opt.data_roots[name] = s.substr(eq + 1);
+  }
+}
+
+void runStudio(StudioArgs a) {
+  installStopHandlers();  // a stop signal while the layout loads ends the studio right after
+  addDataRoots(a.data, a.opt);
+  if (!a.web.empty()) a.opt.web_root = a.web;
+  if (a.max_body_kib < 1 || a.max_body_kib > 1024 * 1024)
+    throw InputError("", "--max-body", "must be in 1..1048576 KiB");
+  a.opt.max_body_bytes = a.max_body_kib * 1024;
+  if (a.scene.isDefault()) a.scene.default_apartment = catalogsAvailable();
+  std::fprintf(stderr, "studio: loading %s\n",
+               a.scene.isDefault()
+                   ? (a.scene.default_apartment ? "builtin:apartment" : "builtin:room")
+                   : a.scene.path.c_str());
+  const auto layout = studio::loadStudioLayout(a.scene);
+  studio::StudioServer server(a.opt, layout);
+  std::printf("studio: serving %s (layout %s, loaded in %.1f s); Ctrl-C stops\n",
+              server.url().c_str(), layout->scene.name.c_str(), layout->load_s);
+  if (!a.opt.allow_remote)
+    std::printf(
+        "studio: from another machine: ssh -L %d:localhost:%d THIS_HOST, then open "
+        "http://localhost:%d/\n",
+        server.port(), server.port(), server.port());
+  std::fflush(stdout);  // a script or test reads the port from a pipe
+  const int sig = server.runUntilStopSignal();
+  std::printf("studio: stopped by %s\n", sig == SIGINT    ? "SIGINT"
+                                         : sig == SIGTERM ? "SIGTERM"
+                                                          : "a signal");
+}
+
+}  // namespace
+
+void registerStudio(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "studio",
+      "Serve the studio, the interactive designer (the paper's ViSim), as a web page: the "
+      "layout's summary and random trajectories through its free space now; the 3D view and "
+      "trajectory design to come (docs/studio.md). Runs until Ctrl-C or SIGTERM (exit 0)");
+  cmd->footer(
+      "Only this machine can connect by default (127.0.0.1). To use the studio on a "
+      "workstation or cluster node from your laptop, tunnel the port over SSH instead of "
+      "opening it:\n"
+      "  laptop$ ssh -L 8080:localhost:8080 node   # then, on node: interiornet studio\n"
+      "  and open http://localhost:8080/ in the laptop's browser.\n"
+      "--allow-remote serves other machines directly: the studio has no login and no "
+      "encryption, so anyone who reaches the port can read the --data folders and start jobs. "
+      "Other users of a shared machine can reach its loopback too.");
+  auto a = std::make_shared<StudioArgs>();
+  addSceneFlags(*cmd, a->scene,
+                "the built-in apartment (builtin:apartment) where the Sweet Home 3D catalogs are "
+                "installed, else the built-in furnished room (builtin:room)");
+  cmd->add_option("--port", a->opt.port, "TCP port; 0 = any free one, printed (default 8080)");
+  cmd->add_option("--host", a->opt.host,
+                  "address to listen on (default 127.0.0.1); anything but the loopback needs "
+                  "--allow-remote");
+  cmd->add_flag("--allow-remote", a->opt.allow_remote,
+                "allow --host to be an address other machines reach (prints a warning; prefer "
+                "an SSH tunnel)");
+  cmd->add_option("--web", a->web,
+                  "folder of the page's files (default: studio/web of the source tree, or "
+                  "share/interiornet/studio/web; $INET_STUDIO_WEB overrides)");
+  cmd->add_option("--data", a->data,
+                  "NAME=DIR: serve DIR's files read-only at /api/files/NAME/... (repeatable; "
+                  "nothing else on disk is served, not even the layout's folder unless given)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--threads", a->opt.threads,
+                  "connections served at once (default 32); previews are computed as many at "
+                  "a time as the machine has cores");
+  cmd->add_option("--max-body", a->max_body_kib, "largest request body in KiB (default 1024)");
+  cmd->add_flag("--log", a->opt.log_requests, "print one line per request on stderr");
+  cmd->callback([a] { runStudio(*a); });
+}
+
+}  // namespace inet::app

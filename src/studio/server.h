@@ -1,0 +1,91 @@
+#pragma once
+// The studio's HTTP server (issue 18): the paper's ViSim as a web page served by the binary.
+// HTTP and JSON only, over the existing libraries; the page itself lives in studio/web/.
+//
+// Routes (docs/studio.md has request and response examples):
+//   GET  /                           the web root's index.html
+//   GET  /<path>                     a file below the web root (static assets)
+//   GET  /api/health                 {"status": "ok", "version", "layout", "jobs", "uptime_s"}
+//   GET  /api/layout                 the layout's summary (what `layout show` prints)
+//   GET  /api/files                  {"roots": [names of the data roots]}
+//   GET  /api/files/<root>/<path>    a file below a named data root, read-only
+//   POST /api/trajectory/preview     a random trajectory's poses (studio/trajectory_api.h)
+//   POST /api/jobs/trajectory        the same as a background job: 202 {"id", ...}
+//   GET  /api/jobs                   every stored job, without results
+//   GET  /api/jobs/<id>              a job's state, progress, message and result
+// Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
+// one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 411 (chunked
+// bodies), 413 (body over max_body_bytes), 415 (POST without application/json), 503 (job store
+// full), 500 (a bug).
+//
+// Security rules: loopback by default (binding elsewhere needs allow_remote and warns); without
+// allow_remote only Host headers naming the loopback are answered (DNS rebinding); files only
+// below the web root and the data roots (studio/safe_path.h); POST bodies must be JSON (so a
+// cross-site form cannot post, and a cross-site fetch needs a CORS preflight, which is refused);
+// request bodies are limited; at most `threads` connections are served at once, previews are
+// computed `compute_slots` at a time, jobs `job_workers` at a time with `max_jobs` stored.
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "studio/studio_layout.h"
+
+namespace inet::studio {
+
+struct StudioOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;                 ///< 0 = any free port (port() tells which)
+  bool allow_remote = false;       ///< needed to bind an address other machines can reach
+  std::filesystem::path web_root;  ///< static assets; empty = defaultWebRoot()
+  /// Named folders whose files GET /api/files/<name>/... serves read-only. Names: letters,
+  /// digits, '-', '_'.
+  std::map<std::string, std::filesystem::path> data_roots;
+  size_t max_body_bytes = size_t{1} << 20;
+  int threads = 32;       ///< HTTP worker threads (connections served at once)
+  int compute_slots = 0;  ///< previews computed at once; 0 = the machine's hardware threads
+  int job_workers = 1;    ///< background jobs running at once
+  int max_jobs = 64;      ///< background jobs stored
+  int max_preview_frames = 5000;
+  int max_job_frames = 100000;
+  bool log_requests = false;  ///< one line per request on stderr
+};
+
+/// The studio's web assets: $INET_STUDIO_WEB, else studio/web in the source tree this binary
+/// was built from, else <prefix>/share/interiornet/studio/web next to the installed binary.
+std::filesystem::path defaultWebRoot();
+
+class StudioServer {
+ public:
+  /// Checks the options and binds the socket. InputError naming the option: a host that is not
+  /// loopback without allow_remote, a port that cannot be bound, a missing web root or data
+  /// root, a bad root name, limits out of range. With allow_remote and a non-loopback host,
+  /// prints a warning on stderr.
+  StudioServer(StudioOptions opt, std::shared_ptr<const StudioLayout> layout);
+  ~StudioServer();  ///< stop()
+  StudioServer(const StudioServer&) = delete;
+  StudioServer& operator=(const StudioServer&) = delete;
+
+  /// The port bound (the chosen one when the options said 0).
+  int port() const;
+  /// The address the socket is bound to, as the kernel reports it ("127.0.0.1").
+  std::string boundAddress() const;
+  /// "http://HOST:PORT/" (IPv6 hosts in brackets).
+  std::string url() const;
+
+  /// Accepts connections on a background thread; returns once it does.
+  void start();
+  /// Stops accepting, finishes the requests in progress, fails pending jobs and waits for
+  /// running ones. Idempotent; callable from any thread but not from a signal handler.
+  void stop();
+  /// start(), then waits until a SIGINT or SIGTERM (core/stop.h; the caller installs the
+  /// handlers) and stop()s. Returns the signal.
+  int runUntilStopSignal();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace inet::studio
