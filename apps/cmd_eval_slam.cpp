@@ -72,8 +72,10 @@ void runSlam(SlamArgs a) {
   o.external.time_limit_s = a.time_limit_s;
   const fs::path seq = a.sequence;
   const std::string who = a.system.empty() ? "estimate" : a.system;
+  fs::path name = seq.lexically_normal();  // "SEQ/" names SEQ too
+  if (name.filename().empty()) name = name.parent_path();
   const fs::path out =
-      a.out.empty() ? fs::path("slam") / seq.filename() / who : fs::path(a.out);
+      a.out.empty() ? fs::path("slam") / name.filename() / who : fs::path(a.out);
   o.external.work = out / "run";
   o.validate();
   const SlamReport r = evalSlam(seq, o);
