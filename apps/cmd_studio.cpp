@@ -72,8 +72,9 @@ void registerStudio(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "studio",
       "Serve the studio, the interactive designer (the paper's ViSim), as a web page: the "
-      "layout's summary and random trajectories through its free space now; the 3D view and "
-      "trajectory design to come (docs/studio.md). Runs until Ctrl-C or SIGTERM (exit 0)");
+      "layout in 3D and as a floor plan, keyframed camera paths checked against the free "
+      "space, trajectory export and sequence generation (docs/studio.md). Runs until Ctrl-C "
+      "or SIGTERM (exit 0)");
   cmd->footer(
       "Only this machine can connect by default (127.0.0.1). To use the studio on a "
       "workstation or cluster node from your laptop, tunnel the port over SSH instead of "
@@ -95,8 +96,11 @@ void registerStudio(CLI::App& app) {
                 "allow --host to be an address other machines reach (prints a warning; prefer "
                 "an SSH tunnel)");
   cmd->add_option("--web", a->web,
-                  "folder of the page's files (default: studio/web of the source tree, or "
+                  "folder of the page's files (default: the page the build bundled, else "
                   "share/interiornet/studio/web; $INET_STUDIO_WEB overrides)");
+  cmd->add_option("--out", a->opt.out_dir,
+                  "where \"generate sequence\" writes: <out>/<layout name>/<sequence>/, as "
+                  "generate --out (default out)");
   cmd->add_option("--data", a->data,
                   "NAME=DIR: serve DIR's files read-only at /api/files/NAME/... (repeatable; "
                   "nothing else on disk is served, not even the layout's folder unless given)")

@@ -19,7 +19,18 @@ PACKAGES=(
   libsqlite3-dev libopenmpi-dev openmpi-bin
   libarchive-dev
   libcpp-httplib-dev
+  chromium
 )
+# The studio's page (studio/web): three.js, esbuild and playwright-core from the npm registry,
+# as pinned in its package-lock.json, with the machine's Node.js and npm (Node.js >= 20);
+# Debian's chromium runs its browser tests. Done when node_modules is older than the lock.
+studio_npm() {
+  local web; web="$(cd "$(dirname "$0")/.." && pwd)/studio/web"
+  if ! command -v npm >/dev/null; then echo "setup: no npm: the studio's page is not built"; return 0; fi
+  if [ "$web/node_modules/.package-lock.json" -nt "$web/package-lock.json" ]; then return 0; fi
+  echo "setup: npm ci in studio/web"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+}
 
 # `setup.sh fuzz` also installs clang and its sanitizer/libFuzzer runtimes (for `make fuzz`).
 if [ "${1:-}" = "fuzz" ]; then
@@ -42,6 +53,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
+  studio_npm
   exit 0
 fi
 
@@ -55,3 +67,4 @@ echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+studio_npm

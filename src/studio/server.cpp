@@ -22,9 +22,12 @@
 
 #include "core/error.h"
 #include "core/stop.h"
+#include "studio/design_api.h"
 #include "studio/job_queue.h"
+#include "studio/layout_glb.h"
 #include "studio/loopback.h"
 #include "studio/safe_path.h"
+#include "studio/sequence_api.h"
 #include "studio/trajectory_api.h"
 
 namespace inet::studio {
@@ -34,15 +37,15 @@ using nlohmann::json;
 
 fs::path defaultWebRoot() {
   if (const char* env = std::getenv("INET_STUDIO_WEB"); env != nullptr && *env != '\0') return env;
-  const fs::path source = INET_STUDIO_WEB_SOURCE_PATH;
   std::error_code ec;
-  if (fs::is_directory(source, ec)) return source;
+  const fs::path built = INET_STUDIO_WEB_BUILD_PATH;
+  if (fs::is_regular_file(built / "index.html", ec)) return built;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const fs::path installed = exe.parent_path().parent_path() / "share/interiornet/studio/web";
-    if (fs::is_directory(installed, ec)) return installed;
+    if (fs::is_regular_file(installed / "index.html", ec)) return installed;
   }
-  return source;  // the server's check then names the expected folder
+  return INET_STUDIO_WEB_SOURCE_PATH;  // the page saying how to build the page
 }
 
 namespace {
@@ -208,6 +211,7 @@ struct StudioServer::Impl {
   HttpServer http;
   std::vector<Route> routes;
   std::unique_ptr<JobQueue> jobs;
+  std::unique_ptr<LayoutGlb> glb;
   std::unique_ptr<std::counting_semaphore<1024>> compute;
   std::thread listener;
   std::atomic<bool> stopped{false};
@@ -227,6 +231,10 @@ struct StudioServer::Impl {
   void dataFile(const std::string& rest, httplib::Response& res) const;
   void preview(const std::string& body, httplib::Response& res);
   void submitJob(const std::string& body, httplib::Response& res);
+  void submitSequence(const std::string& body, httplib::Response& res);
+  void queued(const std::optional<std::string>& id, httplib::Response& res);
+  void designPath(const std::string& body, httplib::Response& res);
+  void designExport(const std::string& body, httplib::Response& res);
   void jobStatus(const std::string& id, httplib::Response& res) const;
 };
 
@@ -356,12 +364,48 @@ void StudioServer::Impl::submitJob(const std::string& body, httplib::Response& r
     ctx.progress(0.0, fmt::format("simulating {} frames", r.frames));
     return runTrajectoryRequest(*layout_ref, r);
   });
+  queued(id, res);
+}
+
+void StudioServer::Impl::queued(const std::optional<std::string>& id, httplib::Response& res) {
   if (!id)
     return sendError(
         res, 503,
         fmt::format("{} jobs are stored and none has finished; wait for one", opt.max_jobs));
   res.set_header("Location", "/api/jobs/" + *id);
   sendJson(res, 202, {{"id", *id}, {"state", "pending"}, {"status_url", "/api/jobs/" + *id}});
+}
+
+void StudioServer::Impl::submitSequence(const std::string& body, httplib::Response& res) {
+  auto req = std::make_shared<SequenceRequest>(
+      parseSequenceRequest(parseBody(body), *layout, opt.out_dir));
+  queued(jobs->submit("sequence",
+                      [req](JobContext& ctx) { return runSequenceRequest(*req, ctx); }),
+         res);
+}
+
+void StudioServer::Impl::designPath(const std::string& body, httplib::Response& res) {
+  const json request = parseBody(body);
+  checkDesignKeys(request, {});
+  const DesignRequest r = parseDesignRequest(request);
+  json out;
+  {
+    SlotGuard slot(*compute);
+    out = runDesignRequest(*layout, r);
+  }
+  sendJson(res, 200, out);
+}
+
+void StudioServer::Impl::designExport(const std::string& body, httplib::Response& res) {
+  const json request = parseBody(body);
+  checkDesignKeys(request, {"format"});
+  const DesignRequest r = parseDesignRequest(request);
+  if (!request.contains("format") || !request.at("format").is_string())
+    throw InputError("", "format", "must be a trajectory format name (tum, euroc, ...)");
+  const DesignExport e = exportDesign(r, request.at("format").get<std::string>());
+  res.status = 200;
+  res.set_header("Content-Disposition", "attachment; filename=\"" + e.file_name + "\"");
+  res.set_content(e.text, e.content_type);
 }
 
 void StudioServer::Impl::jobStatus(const std::string& id, httplib::Response& res) const {
@@ -396,6 +440,14 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { preview(c.body, res); }});
   routes.push_back({"POST", "/api/jobs/trajectory", false,
                     [this](const Call& c, auto& res) { submitJob(c.body, res); }});
+  routes.push_back({"POST", "/api/jobs/sequence", false,
+                    [this](const Call& c, auto& res) { submitSequence(c.body, res); }});
+  routes.push_back({"POST", "/api/design/path", false,
+                    [this](const Call& c, auto& res) { designPath(c.body, res); }});
+  routes.push_back({"POST", "/api/design/export", false,
+                    [this](const Call& c, auto& res) { designExport(c.body, res); }});
+  get("/api/layout/plan", false, [this](auto&, auto& res) { sendJson(res, 200, layout->plan); });
+  get("/api/layout.glb", false, [this](auto&, auto& res) { sendFile(res, glb->path()); });
 }
 
 void StudioServer::Impl::dispatch(const httplib::Request& req, const std::string& body,
@@ -534,6 +586,7 @@ StudioServer::StudioServer(StudioOptions opt, std::shared_ptr<const StudioLayout
   impl_->compute = std::make_unique<std::counting_semaphore<1024>>(std::min(slots, 1024));
   impl_->jobs =
       std::make_unique<JobQueue>(JobQueue::Options{impl_->opt.job_workers, impl_->opt.max_jobs});
+  impl_->glb = std::make_unique<LayoutGlb>(impl_->layout);
   impl_->addRoutes();
   impl_->configureHttp();
   impl_->installHandlers();

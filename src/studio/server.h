@@ -13,6 +13,11 @@
 //   POST /api/jobs/trajectory        the same as a background job: 202 {"id", ...}
 //   GET  /api/jobs                   every stored job, without results
 //   GET  /api/jobs/<id>              a job's state, progress, message and result
+//   GET  /api/layout/plan            the floor plan raster (studio/floor_plan.h)
+//   GET  /api/layout.glb             the layout as binary glTF (studio/layout_glb.h)
+//   POST /api/design/path            keyframes -> the camera path and its warnings
+//   POST /api/design/export          keyframes -> a trajectory file (studio/design_api.h)
+//   POST /api/jobs/sequence          render the path as a sequence (studio/sequence_api.h)
 // Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
 // one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 411 (chunked
 // bodies), 413 (body over max_body_bytes), 415 (POST without application/json), 503 (job store
@@ -50,10 +55,13 @@ struct StudioOptions {
   int max_preview_frames = 5000;
   int max_job_frames = 100000;
   bool log_requests = false;  ///< one line per request on stderr
+  /// Where sequence jobs write (<out>/<layout name>/<sequence>/, as `generate --out`).
+  std::filesystem::path out_dir = "out";
 };
 
-/// The studio's web assets: $INET_STUDIO_WEB, else studio/web in the source tree this binary
-/// was built from, else <prefix>/share/interiornet/studio/web next to the installed binary.
+/// The studio's page: $INET_STUDIO_WEB, else the bundle the build made (<build>/studio/web),
+/// else <prefix>/share/interiornet/studio/web next to the installed binary, else the source
+/// tree's studio/web/unbuilt (a page saying how to build the page).
 std::filesystem::path defaultWebRoot();
 
 class StudioServer {

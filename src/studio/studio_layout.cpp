@@ -4,6 +4,7 @@
 #include <map>
 
 #include "scene/nyu40.h"
+#include "studio/floor_plan.h"
 #include "trajectory/random_trajectory.h"
 
 namespace inet::studio {
@@ -13,9 +14,11 @@ std::shared_ptr<const StudioLayout> loadStudioLayout(const SceneSource& src) {
   auto layout = std::make_shared<StudioLayout>();
   layout->source =
       src.path.empty() ? (src.default_apartment ? "builtin:apartment" : "builtin:room") : src.path;
+  layout->scene_source = src;
   layout->scene = src.load();
   layout->space = std::make_unique<FreeSpace>(layout->scene, FreeSpaceOptions{}, layout->source);
   layout->summary = layoutSummary(layout->scene, layout->source, layout->space.get());
+  layout->plan = floorPlan(layout->scene, *layout->space);
   layout->load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return layout;
 }

@@ -14,9 +14,11 @@ namespace inet::studio {
 
 struct StudioLayout {
   std::string source;  ///< what was given: a file path, builtin:room, procedural:<seed>
+  SceneSource scene_source;  ///< how it was loaded (a sequence job loads it again the same way)
   Scene scene;
   std::unique_ptr<FreeSpace> space;
   nlohmann::json summary;  ///< layoutSummary()
+  nlohmann::json plan;     ///< floorPlan() (studio/floor_plan.h)
   double load_s = 0.0;     ///< loading the scene and building the free space took this long
 };
 

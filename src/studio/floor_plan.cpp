@@ -1,0 +1,66 @@
+#include "studio/floor_plan.h"
+
+#include <cmath>
+#include <string>
+
+namespace inet::studio {
+
+namespace {
+
+struct Column {
+  char code = 'o';
+  char top = '-';  ///< 'f': 'a' + the highest occupied height in decimetres
+};
+
+Column classifyColumn(const FreeSpace& space, double x, double y, double floor_z,
+                      const FloorPlanOptions& opt) {
+  // a column with no floor of its own (above a table, whose underside leaves less than the
+  // 1 m a floor needs above it) is sampled from the floor level
+  double floor = space.floorBelow(Vec3(x, y, floor_z + opt.height_m));
+  if (std::isnan(floor)) floor = floor_z;
+  const Vec3 at(x, y, floor + opt.height_m);
+  Column c;
+  if (!space.isIndoors(at)) return c;
+  const double d = space.lowerBound(at);
+  if (d <= 0) {
+    c.code = '#';
+    return c;
+  }
+  for (int k = 22; k >= 1; --k)
+    if (space.lowerBound(Vec3(x, y, floor + 0.1 * k)) <= 0) {
+      c.code = 'f';
+      c.top = static_cast<char>('a' + k);
+      return c;
+    }
+  c.code = d < opt.clearance_m ? 'b' : '.';
+  return c;
+}
+
+}  // namespace
+
+nlohmann::json floorPlan(const Scene& scene, const FreeSpace& space, const FloorPlanOptions& opt) {
+  const auto [lo, hi] = scene.bounds();
+  double cell = opt.cell_m;
+  auto count = [&](double extent) { return std::max(1, static_cast<int>(std::ceil(extent / cell))); };
+  while (static_cast<double>(count(hi.x() - lo.x())) * count(hi.y() - lo.y()) > opt.max_cells)
+    cell *= 1.25;
+  const int nx = count(hi.x() - lo.x()), ny = count(hi.y() - lo.y());
+  const double x0 = lo.x() + cell / 2, y0 = lo.y() + cell / 2;
+  const double floor_z = space.floorLevels().empty() ? lo.z() : space.floorLevels().front();
+  nlohmann::json rows = nlohmann::json::array(), tops = nlohmann::json::array();
+  for (int j = 0; j < ny; ++j) {
+    std::string row(static_cast<size_t>(nx), 'o'), top(static_cast<size_t>(nx), '-');
+    for (int i = 0; i < nx; ++i) {
+      const Column c = classifyColumn(space, x0 + i * cell, y0 + j * cell, floor_z, opt);
+      row[i] = c.code;
+      top[i] = c.top;
+    }
+    rows.push_back(std::move(row));
+    tops.push_back(std::move(top));
+  }
+  return {{"cell_m", cell},        {"origin", {x0, y0}},      {"nx", nx},
+          {"ny", ny},              {"floor_z", floor_z},      {"height_m", opt.height_m},
+          {"clearance_m", opt.clearance_m}, {"rows", std::move(rows)}, {"tops", std::move(tops)}};
+}
+
+}  // namespace inet::studio

@@ -1,0 +1,111 @@
+#include "studio/sequence_api.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "studio/json_fields.h"
+#include "trajectory/formats.h"
+
+namespace inet::studio {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+int intIn(const json& body, const std::string& key, int fallback, int lo, int hi) {
+  const int64_t v = integer(body, key, fallback);
+  if (v < lo || v > hi) throw InputError("", key, fmt::format("must be in {}..{}", lo, hi));
+  return static_cast<int>(v);
+}
+
+/// The first studio_NNN with no folder under `parent`.
+std::string freeSequenceName(const fs::path& parent) {
+  for (int i = 0; i < 100000; ++i) {
+    const std::string name = fmt::format("studio_{:03d}", i);
+    if (!fs::exists(parent / name)) return name;
+  }
+  throw InputError(parent.string(), "sequence", "no free studio_NNN name left");
+}
+
+}  // namespace
+
+SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
+                                     const fs::path& out) {
+  checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence"});
+  SequenceRequest r;
+  r.design = parseDesignRequest(body);
+  SequenceJob& job = r.job;
+  job.scene = layout.scene_source;
+  job.fps = r.design.fps;
+  job.K.width = intIn(body, "width", 320, 16, 4096);
+  job.K.height = intIn(body, "height", 240, 16, 4096);
+  job.K.fx = job.K.fy = number(body, "fx", 300.0);
+  if (!(job.K.fx > 0 && job.K.fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
+  job.width_set = job.height_set = job.fx_set = job.fy_set = true;
+  job.spp = intIn(body, "spp", 4, 1, 4096);
+  job.out = out.string();
+  job.progress = false;
+  const fs::path parent = out / layout.scene.name;
+  job.sequence = text(body, "sequence", "");
+  if (job.sequence.empty()) job.sequence = freeSequenceName(parent);
+  if (job.sequence.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                     "0123456789-_") != std::string::npos ||
+      job.sequence.size() > 100)
+    throw InputError("", "sequence", "use up to 100 letters, digits, '-' and '_'");
+  if (fs::exists(parent / job.sequence))
+    throw InputError((parent / job.sequence).string(), "sequence",
+                     "exists already: choose another name");
+  r.trajectory_file = out / "studio" / (job.sequence + "_trajectory.csv");
+  return r;
+}
+
+json runSequenceRequest(const SequenceRequest& req, JobContext& ctx) {
+  Trajectory path = designTrajectory(req.design);
+  const TimeNs t0 = path.poses.front().t_ns;
+  for (TimedPose& p : path.poses) p.t_ns -= t0;
+  fs::create_directories(req.trajectory_file.parent_path());
+  writeTrajectory(req.trajectory_file.string(), path, TrajectoryFormat::Euroc);
+  SequenceJob job = req.job;
+  job.trajectory = req.trajectory_file.string();
+  job.frames = static_cast<int>(path.size());
+  job.frames_set = true;
+  const size_t n = path.size();
+  size_t done = 0, chunk = 1;
+  double setup_s = 0, render_s = 0;
+  SequenceJobResult last;
+  ctx.progress(0.0, fmt::format("rendering {} frames", n));
+  while (done < n) {
+    if (ctx.cancelled())
+      throw InputError("", "", fmt::format("stopped after {} of {} frames", done, n));
+    job.frame_begin = done;
+    job.frame_end = std::min(n, done + chunk);
+    last = runSequenceJob(job);
+    setup_s += last.setup_s;
+    render_s += last.sequences_s;
+    const size_t rendered = job.frame_end - done;
+    done = job.frame_end;
+    ctx.progress(static_cast<double>(done) / n, fmt::format("rendered {} of {} frames", done, n));
+    // the next range: long enough that loading the scene again costs at most a fifth of it,
+    // and that the frames a range renders again to warm up temporal reuse (up to temporal - 1
+    // before its first) cost at most half of it
+    const double per_frame = std::max(1e-3, last.sequences_s / rendered);
+    chunk = std::max<size_t>({size_t{1}, 2 * static_cast<size_t>(std::max(0, job.temporal - 1)),
+                              static_cast<size_t>(std::ceil(4 * last.setup_s / per_frame))});
+  }
+  const auto& s = last.sequences.front();
+  return {{"sequence", job.sequence},
+          {"dir", s.dir},
+          {"trajectory_file", req.trajectory_file.string()},
+          {"frames", s.frames},
+          {"finished", s.finished},
+          {"files", s.files.size()},
+          {"setup_s", std::round(setup_s * 100) / 100},
+          {"render_s", std::round(render_s * 100) / 100}};
+}
+
+}  // namespace inet::studio

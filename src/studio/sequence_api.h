@@ -1,0 +1,45 @@
+#pragma once
+// "Generate sequence" (issue 18): the designed path rendered through the sequence pipeline
+// (pipeline/sequence_job.h, what `interiornet generate` runs) as a background job.
+//
+// Request (POST /api/jobs/sequence): the design keys (studio/design_api.h) and
+//   {"width": 16..4096 (320), "height": 16..4096 (240), "fx": pixels (0, 100000] (300;
+//    fy = fx, principal point at the centre), "spp": 1..4096 (4),
+//    "sequence": a plain folder name (default: the first free studio_NNN)}
+// The path is written as EuRoC (lossless) to <out>/studio/<sequence>_trajectory.csv and the
+// sequence goes to <out>/<layout name>/<sequence>/ as `interiornet generate --layout SOURCE
+// --trajectory that-file --fps FPS --width W --height H --fx FX --fy FX --spp SPP --sequence
+// SEQ --out OUT` would write it (same bytes). It runs in frame ranges (the pipeline's rule:
+// ranges give the same bytes as one run), so the job reports progress and can stop between
+// ranges. The first range is one frame; the next are long enough that reloading the scene
+// costs at most a fifth of one, and re-rendering the frames temporal reuse warms up on at most
+// a half.
+// Result: {"sequence", "dir", "trajectory_file", "frames", "finished", "files", "setup_s",
+//          "render_s"}.
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "pipeline/sequence_job.h"
+#include "studio/design_api.h"
+#include "studio/job_queue.h"
+#include "studio/studio_layout.h"
+
+namespace inet::studio {
+
+struct SequenceRequest {
+  DesignRequest design;
+  SequenceJob job;  ///< everything but the trajectory file and the frame range
+  std::filesystem::path trajectory_file;
+};
+
+/// Parses and checks the request, names the sequence and checks that its folder does not exist
+/// yet (InputError("", "sequence", ...) if it does). `out` is the studio's --out folder.
+SequenceRequest parseSequenceRequest(const nlohmann::json& body, const StudioLayout& layout,
+                                     const std::filesystem::path& out);
+
+/// Writes the trajectory file and renders the sequence, reporting progress to `ctx`.
+nlohmann::json runSequenceRequest(const SequenceRequest& req, JobContext& ctx);
+
+}  // namespace inet::studio

@@ -1,0 +1,137 @@
+// The studio's page (issue 18): the layout in 3D (three.js) and as a floor plan, keyframed
+// camera paths checked against the free space, export, sequence jobs and random trajectories.
+// Everything it knows comes from the JSON API (docs/studio.md). window.studio exposes the
+// pieces to the browser tests (studio/web/tests/).
+import { getJson, post, postJson } from './api.js';
+import { Design } from './design.js';
+import { PlanView } from './plan.js';
+import { View3D } from './view3d.js';
+
+const $ = (id) => document.getElementById(id);
+const num = (id) => Number($(id).value);
+const t0 = performance.now();
+
+function setStatus(text, state) {
+  $('status').textContent = text;
+  $('status').dataset.state = state;
+}
+
+const view = new View3D($('view3d'));
+let plan = null;
+const design = new Design({
+  table: $('keyframes'), info: $('path-info'), warnings: $('warnings'),
+  settings: () => ({ fps: num('fps'), height: num('kf-height'), speed: num('speed'),
+    floor_z: plan ? plan.floor_z : 0 }),
+  onPath: (r) => {
+    const free = r ? r.keyframes.map((k) => k.free) : [];
+    const bad = r ? badPoses(r) : [];
+    planView.setDesign(design.keyframes, free, r ? r.poses : [], bad);
+    view.setDesign(design.keyframes, free, r ? r.poses : [], bad);
+  },
+});
+const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look));
+
+/// Poses inside a warned stretch of the path.
+function badPoses(r) {
+  const bad = new Array(r.poses.length).fill(false);
+  for (const w of r.warnings) {
+    if (w.kind !== 'path') continue;
+    r.poses.forEach((p, i) => {
+      const t = p.t_ns * 1e-9;
+      if (t >= w.from_s - 1e-9 && t <= w.to_s + 1e-9) bad[i] = true;
+    });
+  }
+  return bad;
+}
+
+async function download(format) {
+  if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
+  try {
+    const res = await post('/api/design/export', { ...design.request(), format });
+    const name = (res.headers.get('Content-Disposition') || '').match(/filename="([^"]+)"/);
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(await res.blob());
+    a.download = name ? name[1] : `trajectory_${format}.txt`;
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+  } catch (err) {
+    showJob(err.message, 'failed');
+  }
+}
+
+function showJob(text, state) {
+  $('job').textContent = text;
+  $('job').dataset.state = state;
+}
+
+async function generate() {
+  if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
+  const request = { ...design.request(), fx: num('fx'), width: num('width'),
+    height: num('height'), spp: num('spp') };
+  try {
+    const job = await postJson('/api/jobs/sequence', request);
+    showJob(`job ${job.id}: pending`, 'pending');
+    for (;;) {
+      const s = await getJson(job.status_url);
+      $('job-progress').value = s.progress;
+      if (s.state === 'done') {
+        const r = s.result;
+        return showJob(`done: ${r.frames} frames in ${r.dir} (${r.files} files, ` +
+          `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
+      }
+      if (s.state === 'failed') return showJob(`failed: ${s.error.error}`, 'failed');
+      showJob(`job ${job.id}: ${s.state}, ${s.message}`, s.state);
+      await new Promise((r) => setTimeout(r, 300));
+    }
+  } catch (err) {
+    showJob(err.message, 'failed');
+  }
+}
+
+async function randomPreview() {
+  const out = $('random-info');
+  out.textContent = 'computing…';
+  try {
+    const t = await postJson('/api/trajectory/preview', {
+      type: $('random-type').value, frames: 250, fps: num('fps'), seed: num('random-seed') });
+    out.textContent = `${t.poses.length} poses (${t.type}, v_mult ${t.v_mult.toFixed(2)}, ` +
+      `w_mult ${t.w_mult.toFixed(2)}) in ${t.compute_ms} ms: playing`;
+    await view.play(t.poses, num('fx'), num('height'));
+    out.textContent += ', done';
+  } catch (err) {
+    out.textContent = err.message;
+  }
+}
+
+function wire() {
+  $('export-tum').addEventListener('click', () => download('tum'));
+  $('export-euroc').addEventListener('click', () => download('euroc'));
+  $('export-other').addEventListener('click', () => download($('export-format').value));
+  $('generate').addEventListener('click', generate);
+  $('random').addEventListener('click', randomPreview);
+  $('clear').addEventListener('click', () => design.clear());
+  $('play').addEventListener('click', () => {
+    if (design.result) view.play(design.result.poses, num('fx'), num('height'));
+  });
+  $('fps').addEventListener('change', () => design.update());
+}
+
+async function start() {
+  wire();
+  try {
+    const [layout, p] = await Promise.all([getJson('/api/layout'), getJson('/api/layout/plan')]);
+    plan = p;
+    $('layout-name').textContent = `${layout.name} (${layout.source}, ${layout.rooms.length} rooms)`;
+    planView.setPlan(p, layout.rooms);
+    setStatus('loading the 3D view…', 'loading');
+    const glb = await view.load('/api/layout.glb');
+    window.studio.load_ms = performance.now() - t0;
+    window.studio.glb_ms = glb.ms;
+    setStatus(`ready (${(window.studio.load_ms / 1000).toFixed(2)} s)`, 'ready');
+  } catch (err) {
+    setStatus(err.message, 'error');
+  }
+}
+
+window.studio = { view, planView, design, measureOrbit: (ms) => view.measureOrbit(ms) };
+start();

@@ -1,0 +1,224 @@
+// The 3D view: the layout as our glTF export (GET /api/layout.glb) with orbit navigation
+// (OrbitControls), walking (W A S D / arrows move the eye and the orbit centre together), the
+// designed path and keyframes, and playback of the path as its camera sees it.
+//
+// Frames: the glTF's root node turns our Z-up world into three.js's Y-up one; `world` below
+// does the same, so the path and keyframes are given in our coordinates. A pose T_world_camera
+// (OpenCV camera: x right, y down, z forward) becomes a three.js camera (y up, looking along -z)
+// as  R_x(-90 deg) * T_world_camera * diag(1, -1, -1).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+const kOpenCvToGl = new THREE.Matrix4().makeScale(1, -1, -1);
+const kZupToYup = new THREE.Matrix4().makeRotationX(-Math.PI / 2);
+
+export class View3D {
+  constructor(container) {
+    this.container = container;
+    // no MSAA: software GL (SwiftShader, headless Chromium) pays for every sample
+    this.renderer = new THREE.WebGLRenderer({ antialias: false });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xcfd6de);
+    this.camera = new THREE.PerspectiveCamera(60, 1, 0.05, 500);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => this.requestRender());
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.2);
+    sun.position.set(3, 10, 4);
+    this.scene.add(sun);
+    this.world = new THREE.Group();  // our Z-up coordinates
+    this.world.rotation.x = -Math.PI / 2;
+    this.scene.add(this.world);
+    this.overlay = new THREE.Group();
+    this.world.add(this.overlay);
+    this.pending = false;
+    this.playing = null;
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+    this.installWalkKeys();
+  }
+
+  resize() {
+    const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  requestRender() {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
+      this.renderer.render(this.scene, this.camera);
+    });
+  }
+
+  /// Loads the layout's glTF; resolves with its size in bytes and the load time (ms).
+  async load(url) {
+    const t0 = performance.now();
+    const gltf = await new GLTFLoader().loadAsync(url);
+    // our lights are photometric (KHR_lights_punctual in candela): the view lights itself
+    const lights = [];
+    gltf.scene.traverse((o) => { if (o.isLight) lights.push(o); });
+    for (const l of lights) l.removeFromParent();
+    // a doll's house: the ceilings are hidden so that the rooms are seen from above (the
+    // export's node extras name each object's NYU40 class)
+    gltf.scene.traverse((o) => { if (o.userData && o.userData.nyu40_name === 'ceiling') o.visible = false; });
+    // Lambert rather than the export's metallic-roughness PBR: a design view needs colours and
+    // shapes, and software GL (SwiftShader, headless Chromium) renders it about 3x faster
+    gltf.scene.traverse((o) => {
+      if (!o.isMesh) return;
+      const m = o.material;
+      o.material = new THREE.MeshLambertMaterial({ color: m.color, map: m.map,
+        emissive: m.emissive, emissiveMap: m.emissiveMap, transparent: m.transparent,
+        opacity: m.opacity, side: m.side, name: m.name });
+      m.dispose();
+    });
+    this.scene.add(gltf.scene);
+    this.model = gltf.scene;
+    this.frameAll();
+    await new Promise((resolve) => requestAnimationFrame(() => {
+      this.renderer.render(this.scene, this.camera);
+      resolve();
+    }));
+    return { ms: performance.now() - t0 };
+  }
+
+  /// Puts the orbit centre in the middle of the layout and the eye above one corner.
+  frameAll() {
+    const box = new THREE.Box3().setFromObject(this.model);
+    const centre = box.getCenter(new THREE.Vector3());
+    const size = box.getSize(new THREE.Vector3());
+    const r = Math.max(size.x, size.z) * 0.75 + 1;
+    this.controls.target.copy(centre);
+    this.camera.position.set(centre.x + r * 0.4, centre.y + r, centre.z + r * 0.7);
+    this.controls.update();
+  }
+
+  /// The path (poses of /api/design/path; `bad[i]` marks poses outside the free space) and
+  /// the keyframes ({position, look_at}, `free` per keyframe).
+  setDesign(keyframes, free, poses, bad) {
+    this.overlay.clear();
+    if (poses && poses.length > 1) {
+      const points = poses.map((p) => new THREE.Vector3(...p.position));
+      const colors = [];
+      for (let i = 0; i < poses.length; i++) colors.push(...(bad[i] ? [0.9, 0.1, 0.1] : [0.1, 0.3, 0.9]));
+      const g = new THREE.BufferGeometry().setFromPoints(points);
+      g.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
+      this.overlay.add(new THREE.Line(g, new THREE.LineBasicMaterial({ vertexColors: true })));
+    }
+    keyframes.forEach((k, i) => {
+      const ok = free[i] !== false;
+      const ball = new THREE.Mesh(new THREE.SphereGeometry(0.08, 16, 8),
+        new THREE.MeshBasicMaterial({ color: ok ? 0x2060e0 : 0xe02020 }));
+      ball.position.set(...k.position);
+      this.overlay.add(ball);
+      const look = new THREE.BufferGeometry().setFromPoints(
+        [new THREE.Vector3(...k.position), new THREE.Vector3(...k.look_at)]);
+      this.overlay.add(new THREE.Line(look, new THREE.LineBasicMaterial({ color: 0x208040 })));
+    });
+    this.requestRender();
+  }
+
+  /// Shows the camera of pose p ({position, quaternion_xyzw}) with focal length fx for an
+  /// image `height` pixels tall.
+  showPose(p, fx, height) {
+    const [x, y, z, w] = p.quaternion_xyzw;
+    const T = new THREE.Matrix4().compose(new THREE.Vector3(...p.position),
+      new THREE.Quaternion(x, y, z, w), new THREE.Vector3(1, 1, 1));
+    const m = kZupToYup.clone().multiply(T).multiply(kOpenCvToGl);
+    m.decompose(this.camera.position, this.camera.quaternion, new THREE.Vector3());
+    this.camera.fov = 2 * Math.atan(height / 2 / fx) * 180 / Math.PI;
+    this.camera.updateProjectionMatrix();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  /// Plays the poses at their own times; resolves when done (or stopped by another play()).
+  play(poses, fx, height) {
+    this.stop();
+    const saved = { position: this.camera.position.clone(), fov: this.camera.fov };
+    this.controls.enabled = false;
+    this.overlay.visible = false;
+    return new Promise((resolve) => {
+      const t0 = performance.now();
+      const run = { resolve, saved };
+      this.playing = run;
+      const step = () => {
+        if (this.playing !== run) return;
+        const t_ns = (performance.now() - t0) * 1e6;
+        let i = poses.findIndex((p) => p.t_ns > t_ns);
+        if (i < 0) return this.stop();
+        this.showPose(poses[Math.max(0, i - 1)], fx, height);
+        requestAnimationFrame(step);
+      };
+      step();
+    });
+  }
+
+  stop() {
+    const run = this.playing;
+    if (!run) return;
+    this.playing = null;
+    this.camera.position.copy(run.saved.position);
+    this.camera.fov = run.saved.fov;
+    this.camera.updateProjectionMatrix();
+    this.controls.enabled = true;
+    this.overlay.visible = true;
+    this.controls.update();
+    this.requestRender();
+    run.resolve();
+  }
+
+  /// W A S D or the arrows walk: the eye and the orbit centre move together, level, along the
+  /// view direction (0.1 m a press).
+  installWalkKeys() {
+    const el = this.renderer.domElement;
+    el.tabIndex = 0;
+    el.addEventListener('keydown', (e) => {
+      const step = { KeyW: [0, 1], ArrowUp: [0, 1], KeyS: [0, -1], ArrowDown: [0, -1],
+        KeyA: [-1, 0], ArrowLeft: [-1, 0], KeyD: [1, 0], ArrowRight: [1, 0] }[e.code];
+      if (!step) return;
+      e.preventDefault();
+      const forward = new THREE.Vector3();
+      this.camera.getWorldDirection(forward);
+      forward.y = 0;
+      if (forward.lengthSq() < 1e-9) return;
+      forward.normalize();
+      const right = new THREE.Vector3().crossVectors(forward, this.camera.up).normalize();
+      const move = forward.multiplyScalar(step[1] * 0.1).add(right.multiplyScalar(step[0] * 0.1));
+      this.camera.position.add(move);
+      this.controls.target.add(move);
+      this.controls.update();
+    });
+  }
+
+  /// Orbits for `ms` milliseconds, rendering every animation frame; resolves with the frames
+  /// drawn and the frame rate (what the browser's own frame timing allowed).
+  measureOrbit(ms) {
+    return new Promise((resolve) => {
+      const t0 = performance.now();
+      const gaps = [];
+      let last = t0;
+      const step = (now) => {
+        gaps.push(now - last);
+        last = now;
+        this.controls.rotateLeft(0.02);
+        this.controls.update();
+        this.renderer.render(this.scene, this.camera);
+        if (now - t0 < ms) return requestAnimationFrame(step);
+        gaps.shift();
+        gaps.sort((a, b) => a - b);
+        const total = now - t0;
+        resolve({ frames: gaps.length, ms: total, fps: gaps.length / (total / 1000),
+          median_frame_ms: gaps[Math.floor(gaps.length / 2)],
+          p95_frame_ms: gaps[Math.floor(gaps.length * 0.95)] });
+      };
+      requestAnimationFrame(step);
+    });
+  }
+}

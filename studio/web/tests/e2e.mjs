@@ -1,0 +1,209 @@
+// The studio's acceptance test in a real browser (issue 18): Debian's chromium, headless,
+// driven by playwright-core, against the real `interiornet studio` binary.
+//   node e2e.mjs --binary build/apps/interiornet --work DIR [--screenshots DIR]
+// Steps: load a layout; place 4 keyframes by clicking the plan (one by dragging, to set where
+// it looks); place a 5th inside furniture and see the warning; change fx and the frame rate;
+// export TUM and EuRoC and check that `interiornet generate` renders them with the same poses;
+// start a sequence job and see it finish. A screenshot per step (docs/images/studio_*.png when
+// --screenshots is docs/images). Exit 0 passed, 1 failed, 77 skipped (no chromium or npm
+// packages).
+import { existsSync, mkdirSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { join } from 'node:path';
+import { launch, options, poseDifference, readPoses, run, skipUnlessBrowser, startStudio } from './lib.mjs';
+
+skipUnlessBrowser();
+const opt = options({ layout: 'builtin:room', work: '', binary: '', screenshots: '' });
+if (!opt.binary || !opt.work) throw new Error('usage: e2e.mjs --binary PATH --work DIR [--screenshots DIR]');
+rmSync(opt.work, { recursive: true, force: true });
+mkdirSync(opt.work, { recursive: true });
+const shots = opt.screenshots || join(opt.work, 'screenshots');
+mkdirSync(shots, { recursive: true });
+
+let failures = 0, checks = 0;
+const t_start = Date.now();
+function check(ok, what) {
+  checks++;
+  if (!ok) failures++;
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+}
+const step = (name) => console.log(`-- ${name} (${((Date.now() - t_start) / 1000).toFixed(1)} s)`);
+
+/// Free cells of the plan ('.') with free cells all around (radius 3 cells), far apart from
+/// each other (greedy farthest point), and the middle of a piece of furniture: an 'f' cell
+/// surrounded by 'f' cells (radius 2) whose top (plan.tops) is 0.5..1.2 m above the floor.
+function pickCells(plan, count) {
+  const at = (i, j) => (j >= 0 && j < plan.ny && i >= 0 && i < plan.nx ? plan.rows[j][i] : 'o');
+  const world = (i, j) => [plan.origin[0] + i * plan.cell_m, plan.origin[1] + j * plan.cell_m];
+  const around = (i, j, r, code) => {
+    for (let dj = -r; dj <= r; dj++)
+      for (let di = -r; di <= r; di++) if (at(i + di, j + dj) !== code) return false;
+    return true;
+  };
+  const open = [];
+  let furniture = null;
+  for (let j = 0; j < plan.ny; j++)
+    for (let i = 0; i < plan.nx; i++) {
+      if (around(i, j, 3, '.')) open.push([i, j]);
+      const top_m = (plan.tops[j].charCodeAt(i) - 97) / 10;
+      if (!furniture && around(i, j, 2, 'f') && top_m >= 0.5 && top_m <= 1.2)
+        furniture = { xy: world(i, j), top_m };
+    }
+  const chosen = [open[Math.floor(open.length / 2)]];
+  while (chosen.length < count) {
+    let best = null, best_d = -1;
+    for (const c of open) {
+      const d = Math.min(...chosen.map((o) => Math.hypot(o[0] - c[0], o[1] - c[1])));
+      if (d > best_d) { best_d = d; best = c; }
+    }
+    chosen.push(best);
+  }
+  return { free: chosen.map(([i, j]) => world(i, j)), furniture };
+}
+
+const studio = await startStudio(opt.binary, ['--layout', opt.layout, '--out', join(opt.work, 'out')]);
+const browser = await launch();
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+
+  step('load the layout');
+  const t_load = Date.now();
+  await page.goto(studio.url);
+  await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 60000 });
+  check(await page.getAttribute('#status', 'data-state') === 'ready',
+    `page ready in ${Date.now() - t_load} ms: ${await page.textContent('#status')}`);
+  const meshes = await page.evaluate(() => { let n = 0; window.studio.view.model.traverse((o) => { if (o.isMesh) n++; }); return n; });
+  check(meshes > 10, `the 3D view holds the layout's glTF (${meshes} meshes)`);
+  await page.screenshot({ path: join(shots, 'studio_1_layout.png') });
+
+  step('place 4 keyframes by clicking the plan');
+  const plan = await page.evaluate(() => fetch('/api/layout/plan').then((r) => r.json()));
+  const cells = pickCells(plan, 4);
+  check(cells.free.length === 4 && cells.furniture !== null, `cells picked: ${JSON.stringify(cells)}`);
+  await page.fill('#speed', '2');
+  const box = await page.locator('#plan').boundingBox();
+  const toPage = async (xy) => {
+    const [u, v] = await page.evaluate((p) => window.studio.planView.canvasPoint(p[0], p[1]), xy);
+    return [box.x + u, box.y + v];
+  };
+  const pathReady = async (action) => {
+    const before = Number(await page.getAttribute('#path-info', 'data-version') || 0);
+    await action();
+    await page.waitForFunction((v) => {
+      const el = document.getElementById('path-info');
+      return el.dataset.state !== 'computing' && Number(el.dataset.version || 0) > v;
+    }, before, { timeout: 20000 });
+  };
+  for (let k = 0; k < 4; k++) {
+    const [x, y] = await toPage(cells.free[k]);
+    if (k === 3) {  // a drag: stand at the cell, look towards the first keyframe
+      const [lx, ly] = await toPage(cells.free[0]);
+      await pathReady(async () => {
+        await page.mouse.move(x, y);
+        await page.mouse.down();
+        await page.mouse.move((x + lx) / 2, (y + ly) / 2, { steps: 4 });
+        await page.mouse.up();
+      });
+    } else {
+      await pathReady(() => page.mouse.click(x, y));
+    }
+  }
+  const rows = await page.locator('#keyframes tbody tr').count();
+  check(rows === 4, `4 keyframes in the table (${rows})`);
+  const kw = await page.locator('#warnings li[data-kind=keyframe]').count();
+  check(kw === 0, `no keyframe warning for the free keyframes (${kw})`);
+  const dragged = await page.evaluate(() => window.studio.design.keyframes[3]);
+  const look = Math.hypot(dragged.look_at[0] - cells.free[0][0], dragged.look_at[1] - cells.free[0][1]);
+  check(look < Math.hypot(dragged.position[0] - cells.free[0][0], dragged.position[1] - cells.free[0][1]),
+    `the dragged keyframe looks towards the first (${JSON.stringify(dragged)})`);
+  check(await page.getAttribute('#path-info', 'data-state') === 'ready',
+    `path: ${await page.textContent('#path-info')}`);
+  await page.screenshot({ path: join(shots, 'studio_2_keyframes.png') });
+
+  step('a keyframe inside furniture');
+  // at the height of the furniture's top, as the plan's shading shows it
+  await page.fill('#kf-height', String(cells.furniture.top_m));
+  await pathReady(async () => page.mouse.click(...(await toPage(cells.furniture.xy))));
+  const warning = page.locator('#warnings li[data-kind=keyframe][data-index="4"]');
+  check(await warning.count() === 1, `warning: ${await warning.count() ? await warning.textContent() : 'none'}`);
+  check(await page.locator('#keyframes tbody tr').nth(4).getAttribute('class') === 'warn',
+    'its table row is marked');
+  await page.screenshot({ path: join(shots, 'studio_3_collision.png') });
+  await pathReady(() => page.locator('#keyframes tbody tr').nth(4).locator('button').click());
+  check(await page.locator('#keyframes tbody tr').count() === 4, 'removed again');
+
+  step('change fx and the frame rate');
+  await page.fill('#fx', '60');
+  await page.fill('#width', '64');
+  await page.fill('#height', '48');
+  await page.fill('#spp', '1');
+  await pathReady(async () => {
+    await page.fill('#fps', '5');
+    await page.locator('#fps').dispatchEvent('change');
+  });
+  const result = await page.evaluate(() => window.studio.design.result);
+  const dt = result.poses[1].t_ns - result.poses[0].t_ns;
+  check(result.fps === 5 && dt === 200000000, `path at 5 fps: ${result.frames} poses, ${dt} ns apart`);
+  await page.screenshot({ path: join(shots, 'studio_4_camera.png') });
+
+  step('export TUM and EuRoC');
+  const exported = {};
+  for (const [button, name] of [['#export-tum', 'groundtruth.txt'], ['#export-euroc', 'data.csv']]) {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+    const file = join(opt.work, 'export', name);
+    await dl.saveAs(file);
+    exported[name] = readPoses(file);
+    check(dl.suggestedFilename() === name && exported[name].length === result.frames,
+      `${dl.suggestedFilename()}: ${exported[name].length} poses`);
+  }
+  const shown = result.poses.map((p) => ({ t_ns: p.t_ns, p: p.position, q: p.quaternion_xyzw }));
+  for (const [name, poses] of Object.entries(exported)) {
+    const d = poseDifference(shown, poses, shown.length);
+    check(d.max < 1e-8 && d.times, `${name} holds the page's path (max difference ${d.max.toExponential(1)})`);
+  }
+
+  step('interiornet generate renders the exported files with the same poses');
+  const frames = 3;
+  for (const [name, poses] of Object.entries(exported)) {
+    const seq = name === 'data.csv' ? 'euroc' : 'tum';
+    const t_gen = Date.now();
+    const g = await run(opt.binary, ['generate', '--layout', opt.layout, '--trajectory',
+      join(opt.work, 'export', name), '--frames', String(frames), '--fps', '5', '--width', '64',
+      '--height', '48', '--fx', '60', '--fy', '60', '--spp', '1', '--out', join(opt.work, 'gen'),
+      '--sequence', seq, '--no-progress']);
+    check(g.code === 0, `generate --trajectory ${name}: exit ${g.code} in ${Date.now() - t_gen} ms` +
+      (g.code ? `\n${g.out}` : ''));
+    const dir = join(opt.work, 'gen', readdirSync(join(opt.work, 'gen'))[0], seq);
+    const rendered = readPoses(join(dir, 'state_groundtruth_estimate0', 'data.csv'));
+    const images = existsSync(join(dir, 'cam0', 'data')) ? readdirSync(join(dir, 'cam0', 'data')).length : 0;
+    const d = poseDifference(poses, rendered, frames);
+    check(rendered.length === frames && images === frames && d.max < 1e-8,
+      `${seq}: ${images} images, poses as exported (max difference ${d.max.toExponential(1)})`);
+  }
+  await page.screenshot({ path: join(shots, 'studio_5_export.png') });
+
+  step('generate a sequence as a background job');
+  const t_job = Date.now();
+  await page.click('#generate');
+  await page.waitForSelector('#job[data-state=done], #job[data-state=failed]', { timeout: 300000 });
+  const job = await page.textContent('#job');
+  check(await page.getAttribute('#job', 'data-state') === 'done', `${job} (${Date.now() - t_job} ms)`);
+  const m = job.match(/ in (\S+) \(/);
+  if (m) {
+    const yaml = readFileSync(join(m[1], 'cam0', 'sensor.yaml'), 'utf8');
+    check(/intrinsics: \[60(\.0)?, 60(\.0)?, /.test(yaml) && /resolution: \[64, 48\]/.test(yaml),
+      `the sequence's camera has fx 60 and 64x48: ${yaml.match(/intrinsics.*|resolution.*/g)}`);
+    const images = readdirSync(join(m[1], 'cam0', 'data')).length;
+    check(images === result.frames, `${images} frames rendered of ${result.frames}`);
+  }
+  await page.screenshot({ path: join(shots, 'studio_6_sequence.png') });
+  check(errors.length === 0, `no errors on the page ${JSON.stringify(errors)}`);
+} finally {
+  await browser.close();
+  const code = await studio.stop();
+  check(code === 0, `studio stopped with exit ${code}`);
+}
+const passed = checks - failures;
+console.log(`${passed} passed, ${failures} failed (${((Date.now() - t_start) / 1000).toFixed(1)} s)`);
+process.exit(failures ? 1 : 0);
