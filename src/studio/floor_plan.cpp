@@ -39,7 +39,18 @@ Column classifyColumn(const FreeSpace& space, double x, double y, double floor_z
 }  // namespace
 
 nlohmann::json floorPlan(const Scene& scene, const FreeSpace& space, const FloorPlanOptions& opt) {
-  const auto [lo, hi] = scene.bounds();
+  auto [lo, hi] = scene.bounds();
+  if (!scene.rooms.empty()) {  // the rooms, not the ground around the building
+    Vec3 rlo = Vec3::Constant(1e30), rhi = Vec3::Constant(-1e30);
+    for (const Room& r : scene.rooms)
+      for (const auto& p : r.outline) {
+        rlo = rlo.cwiseMin(Vec3(p.x(), p.y(), lo.z()));
+        rhi = rhi.cwiseMax(Vec3(p.x(), p.y(), hi.z()));
+      }
+    const Vec3 margin(0.5, 0.5, 0.0);
+    lo = lo.cwiseMax(rlo - margin);
+    hi = hi.cwiseMin(rhi + margin);
+  }
   double cell = opt.cell_m;
   auto count = [&](double extent) { return std::max(1, static_cast<int>(std::ceil(extent / cell))); };
   while (static_cast<double>(count(hi.x() - lo.x())) * count(hi.y() - lo.y()) > opt.max_cells)

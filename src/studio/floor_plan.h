@@ -2,7 +2,8 @@
 // The floor plan the page draws under the keyframes: a raster of the layout's free space seen
 // from above, made once when the layout loads (GET /api/layout/plan).
 //
-// Cells of `cell_m` over the scene's bounds in x and y; each cell's centre column is sampled at
+// Cells of `cell_m` over the rooms' outlines and 0.5 m around them (without rooms, the scene's
+// bounds) in x and y; each cell's centre column is sampled at
 // `height_m` above its floor (the camera's usual height; the lowest floor level where the
 // column has no floor of its own, e.g. above a table) and every 0.1 m from 0.1 m to 2.2 m above
 // it (what a camera passing there could hit). One character per cell:

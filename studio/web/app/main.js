@@ -124,7 +124,10 @@ async function start() {
     $('layout-name').textContent = `${layout.name} (${layout.source}, ${layout.rooms.length} rooms)`;
     planView.setPlan(p, layout.rooms);
     setStatus('loading the 3D view…', 'loading');
-    const glb = await view.load('/api/layout.glb');
+    // the 3D view frames what the plan shows (the rooms, not the ground around them)
+    const lo = [p.origin[0] - p.cell_m / 2, p.origin[1] - p.cell_m / 2, p.floor_z];
+    const hi = [lo[0] + p.nx * p.cell_m, lo[1] + p.ny * p.cell_m, p.floor_z + 2.5];
+    const glb = await view.load('/api/layout.glb', lo, hi);
     window.studio.load_ms = performance.now() - t0;
     window.studio.glb_ms = glb.ms;
     setStatus(`ready (${(window.studio.load_ms / 1000).toFixed(2)} s)`, 'ready');

@@ -9,9 +9,35 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
 
 const kOpenCvToGl = new THREE.Matrix4().makeScale(1, -1, -1);
 const kZupToYup = new THREE.Matrix4().makeRotationX(-Math.PI / 2);
+
+/// The visible meshes of `root` merged into one mesh per material, in world coordinates: a
+/// 10-room apartment has some 850 meshes, and each draw call costs (most of all in software
+/// GL). The view neither picks nor animates single objects, so nothing is lost.
+function mergeByMaterial(root) {
+  root.updateMatrixWorld(true);
+  const groups = new Map();
+  root.traverseVisible((o) => {
+    if (!o.isMesh) return;
+    const g = o.geometry.index ? o.geometry.toNonIndexed() : o.geometry.clone();
+    for (const name of Object.keys(g.attributes))
+      if (!['position', 'normal', 'uv'].includes(name)) g.deleteAttribute(name);
+    g.applyMatrix4(o.matrixWorld);
+    const key = `${o.material.uuid}/${Object.keys(g.attributes).sort().join(',')}`;
+    if (!groups.has(key)) groups.set(key, { material: o.material, geometries: [] });
+    groups.get(key).geometries.push(g);
+  });
+  const merged = new THREE.Group();
+  for (const { material, geometries } of groups.values()) {
+    const g = mergeGeometries(geometries);
+    for (const part of geometries) part.dispose();
+    if (g) merged.add(new THREE.Mesh(g, material));
+  }
+  return merged;
+}
 
 export class View3D {
   constructor(container) {
@@ -58,8 +84,9 @@ export class View3D {
     });
   }
 
-  /// Loads the layout's glTF; resolves with its size in bytes and the load time (ms).
-  async load(url) {
+  /// Loads the layout's glTF and frames the box lo..hi (our coordinates); resolves with the
+  /// load time (ms).
+  async load(url, lo, hi) {
     const t0 = performance.now();
     const gltf = await new GLTFLoader().loadAsync(url);
     // our lights are photometric (KHR_lights_punctual in candela): the view lights itself
@@ -71,17 +98,20 @@ export class View3D {
     gltf.scene.traverse((o) => { if (o.userData && o.userData.nyu40_name === 'ceiling') o.visible = false; });
     // Lambert rather than the export's metallic-roughness PBR: a design view needs colours and
     // shapes, and software GL (SwiftShader, headless Chromium) renders it about 3x faster
+    const lambert = new Map();  // one per glTF material, so that merging can group by it
     gltf.scene.traverse((o) => {
       if (!o.isMesh) return;
       const m = o.material;
-      o.material = new THREE.MeshLambertMaterial({ color: m.color, map: m.map,
-        emissive: m.emissive, emissiveMap: m.emissiveMap, transparent: m.transparent,
-        opacity: m.opacity, side: m.side, name: m.name });
-      m.dispose();
+      if (!lambert.has(m.uuid)) {
+        lambert.set(m.uuid, new THREE.MeshLambertMaterial({ color: m.color, map: m.map,
+          emissive: m.emissive, emissiveMap: m.emissiveMap, transparent: m.transparent,
+          opacity: m.opacity, side: m.side, name: m.name }));
+      }
+      o.material = lambert.get(m.uuid);
     });
-    this.scene.add(gltf.scene);
-    this.model = gltf.scene;
-    this.frameAll();
+    this.model = mergeByMaterial(gltf.scene);
+    this.scene.add(this.model);
+    this.frameAll(lo, hi);
     await new Promise((resolve) => requestAnimationFrame(() => {
       this.renderer.render(this.scene, this.camera);
       resolve();
@@ -89,15 +119,18 @@ export class View3D {
     return { ms: performance.now() - t0 };
   }
 
-  /// Puts the orbit centre in the middle of the layout and the eye above one corner.
-  frameAll() {
-    const box = new THREE.Box3().setFromObject(this.model);
+  /// Puts the orbit centre in the middle of the box lo..hi (our coordinates; default: the whole
+  /// model) and the eye above one corner.
+  frameAll(lo, hi) {
+    const box = lo ? new THREE.Box3(new THREE.Vector3(lo[0], lo[2], -hi[1]),
+      new THREE.Vector3(hi[0], hi[2], -lo[1])) : new THREE.Box3().setFromObject(this.model);
     const centre = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3());
     const r = Math.max(size.x, size.z) * 0.75 + 1;
     this.controls.target.copy(centre);
     this.camera.position.set(centre.x + r * 0.4, centre.y + r, centre.z + r * 0.7);
     this.controls.update();
+    this.requestRender();
   }
 
   /// The path (poses of /api/design/path; `bad[i]` marks poses outside the free space) and

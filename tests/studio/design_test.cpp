@@ -1,0 +1,280 @@
+// The studio's design routes in-process: the floor plan, the layout's glTF, keyframed paths with
+// their free-space warnings, trajectory export and sequence jobs, and their one-line errors.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "scene/gltf_export.h"
+#include "studio/design_api.h"
+#include "studio/server.h"
+#include "studio_test_util.h"
+#include "trajectory/formats.h"
+
+namespace inet::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::clientOf;
+using test::jsonOf;
+
+class StudioDesignTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    StudioOptions o = folders.options();
+    o.out_dir = folders.tmp / "out";
+    server = std::make_unique<StudioServer>(o, test::roomLayout());
+    server->start();
+  }
+  httplib::Result post(const std::string& path, const json& body) {
+    auto c = clientOf(*server);
+    return c.Post(path.c_str(), body.dump(), "application/json");
+  }
+  /// Two keyframes in the room's open middle (free at 1.5 m: see FreeSpaceIsChecked).
+  static json twoKeyframes() {
+    return {{"keyframes",
+             {{{"t", 0.0}, {"position", {2.5, 1.0, 1.5}}, {"look_at", {3.5, 1.0, 1.5}}},
+              {{"t", 1.0}, {"position", {3.3, 1.0, 1.5}}, {"look_at", {3.3, 2.0, 1.2}}}}},
+            {"fps", 10}};
+  }
+  void expectError(const httplib::Result& r, const std::string& field) {
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << r->body;
+    const json j = jsonOf(r);
+    EXPECT_EQ(j["field"], field) << r->body;
+    EXPECT_EQ(j["error"].get<std::string>().find('\n'), std::string::npos);
+  }
+  test::StudioFolders folders;
+  std::unique_ptr<StudioServer> server;
+};
+
+TEST_F(StudioDesignTest, FloorPlanCoversTheRoom) {
+  auto c = clientOf(*server);
+  auto r = c.Get("/api/layout/plan");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200);
+  const json p = jsonOf(r);
+  const int nx = p["nx"], ny = p["ny"];
+  const auto [lo, hi] = test::roomLayout()->scene.bounds();
+  EXPECT_GE(nx * p["cell_m"].get<double>(), hi.x() - lo.x());
+  EXPECT_GE(ny * p["cell_m"].get<double>(), hi.y() - lo.y());
+  ASSERT_EQ(p["rows"].size(), static_cast<size_t>(ny));
+  std::map<char, int> count;
+  for (int j = 0; j < ny; ++j) {
+    const std::string row = p["rows"][j], tops = p["tops"][j];
+    ASSERT_EQ(row.size(), static_cast<size_t>(nx));
+    ASSERT_EQ(tops.size(), static_cast<size_t>(nx));
+    for (int i = 0; i < nx; ++i) {
+      ++count[row[i]];
+      EXPECT_EQ(row[i] == 'f', tops[i] != '-') << i << "," << j;
+    }
+  }
+  for (const auto& [code, n] : count) EXPECT_NE(std::string("o#fb.").find(code), std::string::npos);
+  EXPECT_GT(count['.'], 100);  // the room's open floor
+  EXPECT_GT(count['f'], 50);   // its furniture
+  EXPECT_GT(count['#'], 50);   // its walls
+  // a free cell is free at its height as the exact check sees it
+  const FreeSpace& space = *test::roomLayout()->space;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (p["rows"][j].get<std::string>()[i] == '.') {
+        const Vec3 at(p["origin"][0].get<double>() + i * p["cell_m"].get<double>(),
+                      p["origin"][1].get<double>() + j * p["cell_m"].get<double>(),
+                      p["floor_z"].get<double>() + p["height_m"].get<double>());
+        EXPECT_TRUE(space.hasClearance(at, p["clearance_m"])) << at.transpose();
+      }
+}
+
+TEST_F(StudioDesignTest, LayoutGlbIsOurExport) {
+  auto c = clientOf(*server);
+  auto r = c.Get("/api/layout.glb");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "model/gltf-binary");
+  ASSERT_GT(r->body.size(), 12u);
+  EXPECT_EQ(r->body.substr(0, 4), "glTF");
+  // the same bytes as the export of the same scene written here (same layout, same bytes)
+  const fs::path mine = folders.tmp / "mine.glb";
+  GltfExportOptions opt;
+  opt.binary = true;
+  exportGltf(test::roomLayout()->scene, mine.string(), opt);
+  std::ifstream in(mine, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  EXPECT_TRUE(bytes.str() == r->body) << bytes.str().size() << " vs " << r->body.size();
+  auto again = c.Get("/api/layout.glb");
+  ASSERT_TRUE(again);
+  EXPECT_TRUE(again->body == r->body);
+}
+
+TEST_F(StudioDesignTest, PathThroughKeyframes) {
+  auto r = post("/api/design/path", twoKeyframes());
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json p = jsonOf(r);
+  EXPECT_EQ(p["frames"], 11);  // 0, 0.1, ..., 1.0 s
+  ASSERT_EQ(p["poses"].size(), 11u);
+  EXPECT_EQ(p["poses"][10]["t_ns"], 1000000000);
+  EXPECT_TRUE(p["warnings"].empty()) << p["warnings"].dump();
+  EXPECT_TRUE(p["keyframes"][0]["free"].get<bool>());
+  // the first and last poses are the keyframes: at the position, looking at the point (the
+  // camera's z axis), the image's x axis level
+  const json keys = twoKeyframes()["keyframes"];
+  for (const auto& [pose, key] : {std::pair{p["poses"][0], keys[0]}, std::pair{p["poses"][10], keys[1]}}) {
+    const Vec3 pos(pose["position"][0], pose["position"][1], pose["position"][2]);
+    const Vec3 want(key["position"][0], key["position"][1], key["position"][2]);
+    const Vec3 look(key["look_at"][0], key["look_at"][1], key["look_at"][2]);
+    EXPECT_LT((pos - want).norm(), 1e-12);
+    const auto& q = pose["quaternion_xyzw"];
+    const Mat3 R = Quat(q[3], q[0], q[1], q[2]).toRotationMatrix();
+    EXPECT_LT((R.col(2) - (look - want).normalized()).norm(), 1e-9);
+    EXPECT_NEAR(R.col(0).z(), 0.0, 1e-12);
+    EXPECT_GT(q[3].get<double>(), 0.0);
+  }
+  // speed: 0.8 m in 1 s, a smooth curve between, so at most a little over 0.8 m/s
+  EXPECT_GT(p["max_speed_mps"].get<double>(), 0.79);
+  EXPECT_LT(p["max_speed_mps"].get<double>(), 1.5);
+}
+
+TEST_F(StudioDesignTest, FreeSpaceIsChecked) {
+  json req = twoKeyframes();
+  // a point in the corner where two walls meet (the room's bounds start at the walls' outside)
+  const auto [lo, hi] = test::roomLayout()->scene.bounds();
+  req["keyframes"].push_back({{"t", 3.0},
+                              {"position", {lo.x() + 0.05, lo.y() + 0.05, 1.5}},
+                              {"look_at", {2.0, 2.0, 1.5}}});
+  req["max_speed"] = 100;
+  req["max_turn_rate"] = 10000;
+  const json p = jsonOf(post("/api/design/path", req));
+  ASSERT_TRUE(p.contains("keyframes")) << p.dump();
+  EXPECT_FALSE(p["keyframes"][2]["free"].get<bool>());
+  EXPECT_TRUE(p["keyframes"][0]["free"].get<bool>());
+  bool keyframe = false, path = false;
+  for (const json& w : p["warnings"]) {
+    keyframe |= w["kind"] == "keyframe" && w["index"] == 2;
+    if (w["kind"] == "path") {
+      path = true;
+      EXPECT_LE(w["to_s"].get<double>(), 3.0 + 1e-9);
+      EXPECT_GT(w["to_s"].get<double>(), 1.0);  // the stretch towards the corner
+    }
+  }
+  EXPECT_TRUE(keyframe) << p["warnings"].dump();
+  EXPECT_TRUE(path) << p["warnings"].dump();
+  // limits: 0.8 m in 1 s is over 0.5 m/s
+  req = twoKeyframes();
+  req["max_speed"] = 0.5;
+  const json slow = jsonOf(post("/api/design/path", req));
+  ASSERT_EQ(slow["warnings"].size(), 1u) << slow.dump();
+  EXPECT_EQ(slow["warnings"][0]["kind"], "speed");
+}
+
+TEST_F(StudioDesignTest, ExportWritesTheFormats) {
+  const json path = jsonOf(post("/api/design/path", twoKeyframes()));
+  for (const std::string format : {"tum", "euroc", "icl", "slambench", "scenenet", "kitti"}) {
+    json req = twoKeyframes();
+    req["format"] = format;
+    auto r = post("/api/design/export", req);
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << format << ": " << r->body;
+    EXPECT_NE(r->get_header_value("Content-Disposition").find("attachment; filename="),
+              std::string::npos);
+    // read back with the library's reader: the path's poses (scenenet keeps no roll; its
+    // positions still agree)
+    const TrajectoryFormat f = parseTrajectoryFormat(format);
+    TrajectoryFormatOptions opt;
+    opt.icl_fps = opt.kitti_fps = 10;
+    const Trajectory t = parseTrajectory(r->body, format, f, opt);
+    ASSERT_EQ(t.size(), path["poses"].size()) << format;
+    for (size_t i = 0; i < t.size(); ++i) {
+      const json& want = path["poses"][i];
+      const Vec3 p(want["position"][0], want["position"][1], want["position"][2]);
+      EXPECT_LT((t.poses[i].T_world_camera.t - p).norm(), 1e-6) << format << " pose " << i;
+      EXPECT_EQ(t.poses[i].t_ns - t.poses[0].t_ns, want["t_ns"].get<int64_t>()) << format;
+    }
+  }
+  auto c = clientOf(*server);
+  json req = twoKeyframes();
+  req["format"] = "tum";
+  auto r = c.Post("/api/design/export", req.dump(), "application/json");
+  EXPECT_EQ(r->get_header_value("Content-Disposition"), "attachment; filename=\"groundtruth.txt\"");
+}
+
+TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
+  expectError(post("/api/design/path", json::object()), "keyframes");
+  expectError(post("/api/design/path", {{"keyframes", json::array()}}), "keyframes");
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.0;
+  expectError(post("/api/design/path", req), "keyframes[1].t");
+  req = twoKeyframes();
+  req["keyframes"][0]["position"] = {1, 2};
+  expectError(post("/api/design/path", req), "keyframes[0].position");
+  req = twoKeyframes();
+  req["keyframes"][0]["look_at"] = {2.5, 1.0, 3.0};  // straight up
+  expectError(post("/api/design/path", req), "keyframes[0].look_at");
+  req = twoKeyframes();
+  req["keyframes"][0]["roll"] = 1;
+  expectError(post("/api/design/path", req), "keyframes[0].roll");
+  req = twoKeyframes();
+  req["fps"] = 0;
+  expectError(post("/api/design/path", req), "fps");
+  req = twoKeyframes();
+  req["colour"] = "red";
+  expectError(post("/api/design/path", req), "colour");
+  req = twoKeyframes();
+  req["format"] = "bvh";
+  expectError(post("/api/design/export", req), "format");
+  req = twoKeyframes();
+  req["sequence"] = "../up";
+  expectError(post("/api/jobs/sequence", req), "sequence");
+  req = twoKeyframes();
+  req["width"] = 4;
+  expectError(post("/api/jobs/sequence", req), "width");
+  auto c = clientOf(*server);
+  auto r = c.Post("/api/design/path", "{\"keyframes\": [", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+}
+
+TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.4;
+  req["fps"] = 5;  // 3 frames
+  req.update({{"width", 32}, {"height", 24}, {"fx", 30}, {"spp", 1}, {"sequence", "s1"}});
+  auto r = post("/api/jobs/sequence", req);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 202) << r->body;
+  const std::string url = jsonOf(r)["status_url"];
+  auto c = clientOf(*server);
+  json s;
+  for (int i = 0; i < 600; ++i) {
+    s = jsonOf(c.Get(url.c_str()));
+    if (s["state"] == "done" || s["state"] == "failed") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(s["state"], "done") << s.dump();
+  EXPECT_EQ(s["progress"], 1.0);
+  const json& res = s["result"];
+  EXPECT_EQ(res["frames"], 3);
+  EXPECT_TRUE(res["finished"].get<bool>());
+  const fs::path dir = res["dir"].get<std::string>();
+  EXPECT_EQ(dir, folders.tmp / "out" / test::roomLayout()->scene.name / "s1");
+  EXPECT_TRUE(fs::is_regular_file(dir / "cam0" / "sensor.yaml"));
+  // the poses written are the path's
+  const Trajectory written = readTrajectory((dir / "state_groundtruth_estimate0/data.csv").string());
+  const json path = jsonOf(post("/api/design/path", json{{"keyframes", req["keyframes"]}, {"fps", 5}}));
+  ASSERT_EQ(written.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    const json& p = path["poses"][i]["position"];
+    EXPECT_LT((written.poses[i].T_world_camera.t - Vec3(p[0], p[1], p[2])).norm(), 1e-12);
+  }
+  // the name is taken now
+  auto again = post("/api/jobs/sequence", req);
+  expectError(again, "sequence");
+}
+
+}  // namespace
+}  // namespace inet::studio
