@@ -21,6 +21,8 @@ const char* jobStateName(JobState s) {
       return "done";
     case JobState::Failed:
       return "failed";
+    case JobState::Cancelled:
+      return "cancelled";
   }
   return "?";
 }
@@ -40,6 +42,7 @@ nlohmann::json JobStatus::toJson(bool with_result) const {
 struct JobQueue::Job {
   JobStatus status;
   Work work;
+  bool cancel_requested = false;
 };
 
 /// The context of one running job: writes go to its status under the queue's lock.
@@ -53,7 +56,7 @@ class JobQueue::Context final : public JobContext {
   }
   bool cancelled() const override {
     std::lock_guard lock(q_.mutex_);
-    return q_.stopping_;
+    return q_.stopping_ || job_.cancel_requested;
   }
 
  private:
@@ -85,7 +88,7 @@ std::optional<std::string> JobQueue::submit(const std::string& kind, Work work) 
     // forget the oldest finished job to make room
     auto it = std::find_if(order_.begin(), order_.end(), [&](const std::string& id) {
       const JobState s = jobs_.at(id)->status.state;
-      return s == JobState::Done || s == JobState::Failed;
+      return s == JobState::Done || s == JobState::Failed || s == JobState::Cancelled;
     });
     if (it == order_.end()) return std::nullopt;
     jobs_.erase(*it);
@@ -128,6 +131,28 @@ std::vector<JobStatus> JobQueue::list() const {
   return out;
 }
 
+JobQueue::Cancel JobQueue::cancel(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return Cancel::NotFound;
+  Job& job = *it->second;
+  switch (job.status.state) {
+    case JobState::Pending:
+      pending_.erase(std::find(pending_.begin(), pending_.end(), it->second));
+      job.status.state = JobState::Cancelled;
+      job.status.message = "cancelled before it started";
+      job.status.finished_ms = nowMs();
+      job.work = nullptr;
+      return Cancel::Removed;
+    case JobState::Running:
+      job.cancel_requested = true;
+      job.status.message = "cancelling: " + job.status.message;
+      return Cancel::Requested;
+    default:
+      return Cancel::Finished;
+  }
+}
+
 int JobQueue::running() const {
   std::lock_guard lock(mutex_);
   return running_;
@@ -160,7 +185,10 @@ void JobQueue::workerLoop() {
     --running_;
     job->status.finished_ms = nowMs();
     job->work = nullptr;  // what it captured is no longer needed
-    if (error.is_null()) {
+    if (job->cancel_requested && !error.is_null()) {
+      job->status.state = JobState::Cancelled;
+      job->status.message = "cancelled: " + error["error"].get<std::string>();
+    } else if (error.is_null()) {
       job->status.state = JobState::Done;
       job->status.progress = 1.0;
       job->status.message = "done";

@@ -23,8 +23,8 @@
 
 namespace inet::studio {
 
-enum class JobState { Pending, Running, Done, Failed };
-/// "pending", "running", "done", "failed".
+enum class JobState { Pending, Running, Done, Failed, Cancelled };
+/// "pending", "running", "done", "failed", "cancelled".
 const char* jobStateName(JobState s);
 
 /// A job's state as the API reports it.
@@ -48,7 +48,9 @@ class JobContext {
  public:
   /// Sets the progress (clamped to 0..1) and the message shown with it.
   virtual void progress(double fraction, const std::string& message) = 0;
-  /// True once the queue is shutting down: long work should return at its next safe point.
+  /// True once the job is cancelled or the queue is shutting down: long work should stop at its
+  /// next safe point (return or throw; either way the job ends "cancelled" when it was
+  /// cancelled).
   virtual bool cancelled() const = 0;
 
  protected:
@@ -73,6 +75,10 @@ class JobQueue {
   /// Queues `work`; returns its id, or nullopt when max_stored unfinished jobs are stored.
   std::optional<std::string> submit(const std::string& kind, Work work);
   std::optional<JobStatus> status(const std::string& id) const;
+  /// What cancel() did: nothing (no such job, or it has finished), removed a pending job, or
+  /// asked a running one to stop (JobContext::cancelled(); it ends "cancelled" when it does).
+  enum class Cancel { NotFound, Finished, Removed, Requested };
+  Cancel cancel(const std::string& id);
   /// Every stored job, oldest first, without results.
   std::vector<JobStatus> list() const;
   /// Pending jobs fail ("the server stopped"); running ones are told (cancelled()) and waited

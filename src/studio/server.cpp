@@ -236,6 +236,7 @@ struct StudioServer::Impl {
   void designPath(const std::string& body, httplib::Response& res);
   void designExport(const std::string& body, httplib::Response& res);
   void jobStatus(const std::string& id, httplib::Response& res) const;
+  void cancelJob(const std::string& id, httplib::Response& res);
 };
 
 void StudioServer::Impl::checkOptions() {
@@ -414,6 +415,16 @@ void StudioServer::Impl::jobStatus(const std::string& id, httplib::Response& res
   sendJson(res, 200, s->toJson());
 }
 
+void StudioServer::Impl::cancelJob(const std::string& id, httplib::Response& res) {
+  const JobQueue::Cancel c = jobs->cancel(id);
+  if (c == JobQueue::Cancel::NotFound)
+    return sendError(res, 404, fmt::format("no job '{}'", oneLine(id)));
+  const JobStatus s = *jobs->status(id);
+  if (c == JobQueue::Cancel::Finished)
+    return sendError(res, 409, fmt::format("job '{}' has finished ({})", id, jobStateName(s.state)));
+  sendJson(res, c == JobQueue::Cancel::Removed ? 200 : 202, s.toJson(false));
+}
+
 void StudioServer::Impl::addRoutes() {
   auto get = [this](std::string path, bool prefix, RouteHandler h) {
     routes.push_back({"GET", std::move(path), prefix, std::move(h)});
@@ -440,6 +451,8 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { preview(c.body, res); }});
   routes.push_back({"POST", "/api/jobs/trajectory", false,
                     [this](const Call& c, auto& res) { submitJob(c.body, res); }});
+  routes.push_back({"DELETE", "/api/jobs/", true,
+                    [this](const Call& c, auto& res) { cancelJob(c.rest, res); }});
   routes.push_back({"POST", "/api/jobs/sequence", false,
                     [this](const Call& c, auto& res) { submitSequence(c.body, res); }});
   routes.push_back({"POST", "/api/design/path", false,

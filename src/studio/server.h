@@ -13,13 +13,16 @@
 //   POST /api/jobs/trajectory        the same as a background job: 202 {"id", ...}
 //   GET  /api/jobs                   every stored job, without results
 //   GET  /api/jobs/<id>              a job's state, progress, message and result
+//   DELETE /api/jobs/<id>            cancel: 200 (was pending), 202 (running: stops at its next
+//                                    safe point), 409 (finished), 404
 //   GET  /api/layout/plan            the floor plan raster (studio/floor_plan.h)
 //   GET  /api/layout.glb             the layout as binary glTF (studio/layout_glb.h)
 //   POST /api/design/path            keyframes -> the camera path and its warnings
 //   POST /api/design/export          keyframes -> a trajectory file (studio/design_api.h)
 //   POST /api/jobs/sequence          render the path as a sequence (studio/sequence_api.h)
 // Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
-// one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 411 (chunked
+// one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 409 (cancelling a
+// finished job), 411 (chunked
 // bodies), 413 (body over max_body_bytes), 415 (POST without application/json), 503 (job store
 // full), 500 (a bug).
 //

@@ -274,6 +274,11 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   // the name is taken now
   auto again = post("/api/jobs/sequence", req);
   expectError(again, "sequence");
+  // cancelling: a finished job 409, an unknown one 404 (a running one: studio_e2e)
+  auto cancel = c.Delete(url.c_str());
+  ASSERT_TRUE(cancel);
+  EXPECT_EQ(cancel->status, 409) << cancel->body;
+  EXPECT_EQ(c.Delete("/api/jobs/0123")->status, 404);
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ JobStatus waitFor(const JobQueue& q, const std::string& id) {
   for (;;) {
     const JobStatus s = *q.status(id);
     if (s.state == JobState::Done || s.state == JobState::Failed ||
-        std::chrono::steady_clock::now() > deadline)
+        s.state == JobState::Cancelled || std::chrono::steady_clock::now() > deadline)
       return s;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -52,6 +52,32 @@ TEST(JobQueue, RunsReportsProgressAndResults) {
   EXPECT_EQ(s.progress, 1.0);
   EXPECT_EQ(s.toJson()["result"]["answer"], 42);
   EXPECT_FALSE(q.status("nope").has_value());
+}
+
+TEST(JobQueue, CancelStopsRunningAndRemovesPendingJobs) {
+  JobQueue q({1, 8});
+  std::atomic<bool> started{false};
+  // runs until told to stop, as a sequence job does between frame ranges
+  const auto running = q.submit("test", [&](JobContext& ctx) -> json {
+    started = true;
+    while (!ctx.cancelled()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    throw InputError("", "", "stopped after 3 of 9 frames");
+  });
+  const auto pending = q.submit("test", [](JobContext&) { return json{{"ran", true}}; });
+  ASSERT_TRUE(running && pending);
+  while (!started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_EQ(q.cancel(*pending), JobQueue::Cancel::Removed);
+  EXPECT_EQ(q.status(*pending)->state, JobState::Cancelled);
+  EXPECT_EQ(q.cancel(*running), JobQueue::Cancel::Requested);
+  const JobStatus s = waitFor(q, *running);
+  EXPECT_EQ(s.state, JobState::Cancelled);
+  EXPECT_EQ(s.toJson()["state"], "cancelled");
+  EXPECT_NE(s.message.find("stopped after 3 of 9 frames"), std::string::npos) << s.message;
+  EXPECT_EQ(q.cancel(*running), JobQueue::Cancel::Finished);
+  EXPECT_EQ(q.cancel("nope"), JobQueue::Cancel::NotFound);
+  // the worker is free again
+  const auto next = q.submit("test", [](JobContext&) { return json{{"ran", true}}; });
+  EXPECT_EQ(waitFor(q, *next).state, JobState::Done);
 }
 
 TEST(JobQueue, FailuresCarryTheOneLineError) {

@@ -71,9 +71,13 @@ async function generate() {
   try {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
+    $('cancel').disabled = false;
+    $('cancel').onclick = () => fetch(job.status_url, { method: 'DELETE' });
     for (;;) {
       const s = await getJson(job.status_url);
       $('job-progress').value = s.progress;
+      if (s.state !== 'pending' && s.state !== 'running') $('cancel').disabled = true;
+      if (s.state === 'cancelled') return showJob(`job ${job.id}: ${s.message}`, 'cancelled');
       if (s.state === 'done') {
         const r = s.result;
         return showJob(`done: ${r.frames} frames in ${r.dir} (${r.files} files, ` +

@@ -198,6 +198,14 @@ try {
     check(images === result.frames, `${images} frames rendered of ${result.frames}`);
   }
   await page.screenshot({ path: join(shots, 'studio_6_sequence.png') });
+
+  step('cancel a sequence job');
+  await page.click('#generate');
+  await page.waitForSelector('#cancel:not([disabled])');
+  await page.click('#cancel');
+  await page.waitForSelector('#job[data-state=cancelled], #job[data-state=done], #job[data-state=failed]',
+    { timeout: 120000 });
+  check(await page.getAttribute('#job', 'data-state') === 'cancelled', await page.textContent('#job'));
   check(errors.length === 0, `no errors on the page ${JSON.stringify(errors)}`);
 } finally {
   await browser.close();
