@@ -527,7 +527,8 @@ void StudioServer::Impl::configureHttp() {
                             {"Referrer-Policy", "no-referrer"},
                             {"Cache-Control", "no-store"},
                             {"Content-Security-Policy",
-                             "default-src 'self'; img-src 'self' data: blob:; "
+                             "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; "
+                             "connect-src 'self' blob:; img-src 'self' data: blob:; "
                              "style-src 'self' 'unsafe-inline'; frame-ancestors 'none'; "
                              "base-uri 'none'; form-action 'self'"}});
 }

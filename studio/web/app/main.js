@@ -140,5 +140,5 @@ async function start() {
   }
 }
 
-window.studio = { view, planView, design, measureOrbit: (ms) => view.measureOrbit(ms) };
+window.studio = { view, planView, design, measureOrbit: (ms, moving) => view.measureOrbit(ms, moving) };
 start();

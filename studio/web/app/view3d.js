@@ -10,9 +10,11 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
+import { MeshoptSimplifier } from 'meshoptimizer';
 
 const kOpenCvToGl = new THREE.Matrix4().makeScale(1, -1, -1);
 const kZupToYup = new THREE.Matrix4().makeRotationX(-Math.PI / 2);
+const kCoarseError = 0.05;  ///< metres: how far the coarse copy may stray (buildCoarse)
 
 /// The visible meshes of `root` merged into one mesh per material, in world coordinates: a
 /// 10-room apartment has some 850 meshes, and each draw call costs (most of all in software
@@ -22,11 +24,11 @@ function mergeByMaterial(root) {
   const groups = new Map();
   root.traverseVisible((o) => {
     if (!o.isMesh) return;
-    const g = o.geometry.index ? o.geometry.toNonIndexed() : o.geometry.clone();
+    const g = o.geometry.clone();  // indexed stays indexed: shared vertices are shaded once
     for (const name of Object.keys(g.attributes))
       if (!['position', 'normal', 'uv'].includes(name)) g.deleteAttribute(name);
     g.applyMatrix4(o.matrixWorld);
-    const key = `${o.material.uuid}/${Object.keys(g.attributes).sort().join(',')}`;
+    const key = `${o.material.uuid}/${Object.keys(g.attributes).sort().join(',')}/${!!g.index}`;
     if (!groups.has(key)) groups.set(key, { material: o.material, geometries: [] });
     groups.get(key).geometries.push(g);
   });
@@ -51,6 +53,9 @@ export class View3D {
     this.camera = new THREE.PerspectiveCamera(60, 1, 0.05, 500);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.addEventListener('change', () => this.requestRender());
+    // while the view moves it draws the coarse copy (buildCoarse), once it stops the full one
+    this.controls.addEventListener('start', () => this.setMoving(true));
+    this.controls.addEventListener('end', () => this.setMoving(false));
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.2));
     const sun = new THREE.DirectionalLight(0xffffff, 1.2);
     sun.position.set(3, 10, 4);
@@ -111,12 +116,51 @@ export class View3D {
     });
     this.model = mergeByMaterial(gltf.scene);
     this.scene.add(this.model);
+    this.coarseReady = this.buildCoarse();
     this.frameAll(lo, hi);
     await new Promise((resolve) => requestAnimationFrame(() => {
       this.renderer.render(this.scene, this.camera);
       resolve();
     }));
     return { ms: performance.now() - t0 };
+  }
+
+  /// A coarse copy of the model for moving views: each merged mesh of over 1,000 triangles
+  /// simplified by meshoptimizer's sloppy simplifier (topology not kept) towards a tenth of its
+  /// triangles, at most kCoarseError off (its vertices shared with the full mesh). Software GL (SwiftShader) is bound by triangles: a
+  /// 10-room apartment has 475,000. Built after the first frame, one mesh per task.
+  async buildCoarse() {
+    await MeshoptSimplifier.ready;
+    const coarse = new THREE.Group();
+    for (const mesh of this.model.children) {
+      const g = mesh.geometry;
+      let c = g;
+      if (g.index && g.index.count > 3000) {
+        const indices = g.index.array instanceof Uint32Array ? g.index.array : Uint32Array.from(g.index.array);
+        const target = Math.floor(indices.length / 30) * 3;
+        const [simple] = MeshoptSimplifier.simplifySloppy(indices, g.attributes.position.array, 3,
+          null, target, kCoarseError / MeshoptSimplifier.getScale(g.attributes.position.array, 3));
+        c = new THREE.BufferGeometry();
+        for (const [name, attr] of Object.entries(g.attributes)) c.setAttribute(name, attr);
+        c.setIndex(new THREE.BufferAttribute(simple, 1));
+        await new Promise((resolve) => setTimeout(resolve, 0));
+      }
+      coarse.add(new THREE.Mesh(c, mesh.material));
+    }
+    coarse.visible = false;
+    this.scene.add(coarse);
+    this.coarse = coarse;
+    let triangles = 0;
+    coarse.traverse((o) => { if (o.isMesh) triangles += o.geometry.index ? o.geometry.index.count / 3 : 0; });
+    return { triangles };
+  }
+
+  /// Draws the coarse copy (moving) or the full model.
+  setMoving(moving) {
+    if (!this.coarse || !this.model) return;
+    this.coarse.visible = moving;
+    this.model.visible = !moving;
+    this.requestRender();
   }
 
   /// Puts the orbit centre in the middle of the box lo..hi (our coordinates; default: the whole
@@ -230,9 +274,11 @@ export class View3D {
     });
   }
 
-  /// Orbits for `ms` milliseconds, rendering every animation frame; resolves with the frames
-  /// drawn and the frame rate (what the browser's own frame timing allowed).
-  measureOrbit(ms) {
+  /// Orbits for `ms` milliseconds, rendering every animation frame, as a drag does (the coarse
+  /// copy when `moving`, else the full model); resolves with the frames drawn and the frame rate
+  /// (what the browser's own frame timing allowed).
+  measureOrbit(ms, moving = true) {
+    this.setMoving(moving);
     return new Promise((resolve) => {
       const t0 = performance.now();
       const gaps = [];
@@ -244,6 +290,7 @@ export class View3D {
         this.controls.update();
         this.renderer.render(this.scene, this.camera);
         if (now - t0 < ms) return requestAnimationFrame(step);
+        this.setMoving(false);
         gaps.shift();
         gaps.sort((a, b) => a - b);
         const total = now - t0;

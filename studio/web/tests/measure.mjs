@@ -1,7 +1,8 @@
 // The figures of docs/studio.md for a layout (default: procedural:11, a 10-room apartment):
 // the studio's start (layout, free space, plan), the page's load until the 3D view has drawn
 // the layout, the glTF's size, and the orbit frame rate in headless chromium (requestAnimation-
-// Frame timing while the view orbits and redraws every frame).
+// Frame timing while the view orbits and redraws every frame), with the coarse copy a moving
+// view draws and with the full model.
 //   node measure.mjs --binary build/apps/interiornet [--layout procedural:11] [--orbit-ms 5000]
 //     [--screenshot FILE]
 import { launch, options, skipUnlessBrowser, startStudio } from './lib.mjs';
@@ -27,11 +28,15 @@ try {
     const c = window.studio.view.renderer.domElement;
     return { meshes, triangles, canvas: [c.width, c.height] };
   });
-  const orbit = await page.evaluate((ms) => window.studio.measureOrbit(ms), Number(opt['orbit-ms']));
+  const coarse = await page.evaluate(() => window.studio.view.coarseReady);
+  const coarse_ms = Date.now() - t0 - load_ms;
+  const orbit = await page.evaluate((ms) => window.studio.measureOrbit(ms, true), Number(opt['orbit-ms']));
+  const orbit_full = await page.evaluate((ms) => window.studio.measureOrbit(ms, false), Number(opt['orbit-ms']));
   if (opt.screenshot) await page.screenshot({ path: opt.screenshot });
   console.log(JSON.stringify({ layout: opt.layout, rooms: health.rooms.length,
     layout_load_s: health.load_s, studio_start_ms: studio.started_ms, page_load_ms: load_ms,
-    page: inPage, glb_bytes: glb, ...stats, orbit }, null, 1));
+    page: inPage, glb_bytes: glb, ...stats, coarse: { ...coarse, ready_after_ms: coarse_ms },
+    orbit_moving: orbit, orbit_full }, null, 1));
 } finally {
   await browser.close();
   await studio.stop();
