@@ -42,11 +42,7 @@ class StudioDesignTest : public ::testing::Test {
             {"fps", 10}};
   }
   void expectError(const httplib::Result& r, const std::string& field) {
-    ASSERT_TRUE(r);
-    EXPECT_EQ(r->status, 400) << r->body;
-    const json j = jsonOf(r);
-    EXPECT_EQ(j["field"], field) << r->body;
-    EXPECT_EQ(j["error"].get<std::string>().find('\n'), std::string::npos);
+    test::expectJsonError(r, 400, field);
   }
   test::StudioFolders folders;
   std::unique_ptr<StudioServer> server;

@@ -24,21 +24,8 @@ class StudioServerTest : public ::testing::Test {
     server = std::make_unique<StudioServer>(folders.options(), test::roomLayout());
     server->start();
   }
-  /// Checks a JSON error response: status, one line, and the field named.
   void expectError(const httplib::Result& r, int status, const std::string& field = "") {
-    ASSERT_TRUE(r) << "no response (" << httplib::to_string(r.error()) << "), expected " << status;
-    EXPECT_EQ(r->status, status) << r->body;
-    EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
-    const json j = jsonOf(r);
-    ASSERT_TRUE(j.is_object() && j.contains("error")) << r->body;
-    const std::string msg = j["error"];
-    EXPECT_FALSE(msg.empty());
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    EXPECT_TRUE(j.contains("file") && j.contains("field")) << r->body;
-    if (!field.empty()) {
-      EXPECT_EQ(j["field"], field) << r->body;
-    }
-    EXPECT_EQ(r->body.find(kSecret), std::string::npos);
+    test::expectJsonError(r, status, field);
   }
   test::StudioFolders folders;
   std::unique_ptr<StudioServer> server;

@@ -147,7 +147,7 @@ TEST(StudioCli, ServesOnAFreePortAndStopsCleanlyOnSigterm) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);
   EXPECT_EQ(nlohmann::json::parse(r->body)["status"], "ok");
-  r = c.Get("/");  // the placeholder page from the source tree's studio/web
+  r = c.Get("/");  // the page the build bundled (or studio/web/unbuilt without node_modules)
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);
   EXPECT_NE(r->body.find("interiornet studio"), std::string::npos);

@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the studio's server tests: the built-in room loaded once per test process, a web
 // folder and data folders with symlinks out of them, and a server on a free loopback port.
+#include <gtest/gtest.h>
 #include <httplib.h>
 
 #include <nlohmann/json.hpp>
@@ -64,6 +65,24 @@ inline httplib::Client clientOf(const StudioServer& server) {
 
 inline nlohmann::json jsonOf(const httplib::Result& r) {
   return r ? nlohmann::json::parse(r->body, nullptr, false) : nlohmann::json();
+}
+
+/// Checks a JSON error response: the status, {"error": one line, "file", "field"} with the field
+/// named (when given), and never the secret.
+inline void expectJsonError(const httplib::Result& r, int status, const std::string& field = "") {
+  ASSERT_TRUE(r) << "no response (" << httplib::to_string(r.error()) << "), expected " << status;
+  EXPECT_EQ(r->status, status) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
+  const nlohmann::json j = jsonOf(r);
+  ASSERT_TRUE(j.is_object() && j.contains("error")) << r->body;
+  const std::string msg = j["error"];
+  EXPECT_FALSE(msg.empty());
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_TRUE(j.contains("file") && j.contains("field")) << r->body;
+  if (!field.empty()) {
+    EXPECT_EQ(j["field"], field) << r->body;
+  }
+  EXPECT_EQ(r->body.find(kSecret), std::string::npos);
 }
 
 /// VmRSS of this process in KiB (/proc/self/status).

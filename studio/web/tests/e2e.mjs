@@ -78,6 +78,14 @@ try {
   const meshes = await page.evaluate(() => { let n = 0; window.studio.view.model.traverse((o) => { if (o.isMesh) n++; }); return n; });
   check(meshes > 10, `the 3D view holds the layout's glTF (${meshes} meshes)`);
   await page.screenshot({ path: join(shots, 'studio_1_layout.png') });
+  // walking: W moves the eye 0.1 m forward (level), with the orbit centre
+  const eye = () => page.evaluate(() => window.studio.view.camera.position.toArray());
+  const before = await eye();
+  await page.locator('#view3d canvas').focus();
+  await page.keyboard.press('KeyW');
+  const after = await eye();
+  const moved = Math.hypot(after[0] - before[0], after[2] - before[2]);
+  check(Math.abs(moved - 0.1) < 1e-6 && Math.abs(after[1] - before[1]) < 1e-9, `W walks 0.1 m level (${moved.toFixed(4)} m)`);
 
   step('place 4 keyframes by clicking the plan');
   const plan = await page.evaluate(() => fetch('/api/layout/plan').then((r) => r.json()));
