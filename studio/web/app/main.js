@@ -5,6 +5,7 @@
 import { getJson, post, postJson } from './api.js';
 import { Design } from './design.js';
 import { PlanView } from './plan.js';
+import { drawMotion } from './plot.js';
 import { View3D } from './view3d.js';
 
 const $ = (id) => document.getElementById(id);
@@ -16,7 +17,8 @@ function setStatus(text, state) {
   $('status').dataset.state = state;
 }
 
-const view = new View3D($('view3d'));
+// a double click in 3D adds a keyframe above the point hit, as a click on the plan does
+const view = new View3D($('view3d'), (x, y) => design.add([x, y], null));
 let plan = null;
 const design = new Design({
   table: $('keyframes'), info: $('path-info'), warnings: $('warnings'),
@@ -27,6 +29,7 @@ const design = new Design({
     const bad = r ? badPoses(r) : [];
     planView.setDesign(design.keyframes, free, r ? r.poses : [], bad);
     view.setDesign(design.keyframes, free, r ? r.poses : [], bad);
+    drawMotion($('plot'), r ? r.poses : []);
   },
 });
 const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look));

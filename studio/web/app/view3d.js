@@ -1,6 +1,7 @@
 // The 3D view: the layout as our glTF export (GET /api/layout.glb) with orbit navigation
 // (OrbitControls), walking (W A S D / arrows move the eye and the orbit centre together), the
-// designed path and keyframes, and playback of the path as its camera sees it.
+// designed path and keyframes, keyframes added by a double click on the floor, and playback of
+// the path as its camera sees it.
 //
 // Frames: the glTF's root node turns our Z-up world into three.js's Y-up one; `world` below
 // does the same, so the path and keyframes are given in our coordinates. A pose T_world_camera
@@ -42,7 +43,9 @@ function mergeByMaterial(root) {
 }
 
 export class View3D {
-  constructor(container) {
+  /// onPick(x, y) is called with the world point a double click hits (our coordinates).
+  constructor(container, onPick = () => {}) {
+    this.onPick = onPick;
     this.container = container;
     // no MSAA: software GL (SwiftShader, headless Chromium) pays for every sample
     this.renderer = new THREE.WebGLRenderer({ antialias: false });
@@ -70,6 +73,27 @@ export class View3D {
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
     this.installWalkKeys();
+    this.renderer.domElement.addEventListener('dblclick', (e) => this.pick(e));
+  }
+
+  /// A double click: the first surface of the model under the pointer (floor, furniture top),
+  /// in our coordinates, goes to onPick.
+  pick(e) {
+    if (!this.model || this.playing) return;
+    const r = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1,
+      -((e.clientY - r.top) / r.height) * 2 + 1);
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, this.camera);
+    const hit = ray.intersectObject(this.model, true)[0];
+    if (hit) this.onPick(hit.point.x, -hit.point.z, hit.point.y);
+  }
+
+  /// Where world point p (our coordinates) is in the view, in CSS pixels from its corner.
+  screenPoint(p) {
+    const v = new THREE.Vector3(p[0], p[2], -p[1]).project(this.camera);
+    const r = this.renderer.domElement.getBoundingClientRect();
+    return [(v.x + 1) / 2 * r.width, (1 - v.y) / 2 * r.height];
   }
 
   resize() {

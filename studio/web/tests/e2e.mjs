@@ -143,6 +143,26 @@ try {
   await pathReady(() => page.locator('#keyframes tbody tr').nth(4).locator('button').click());
   check(await page.locator('#keyframes tbody tr').count() === 4, 'removed again');
 
+  step('a keyframe by double-clicking the floor in 3D');
+  // the free cell farthest north: the default view looks from the south over the south wall
+  const north = cells.free.reduce((a, b) => (b[1] > a[1] ? b : a));
+  const target = [...north, plan.floor_z];
+  const canvas3d = await page.locator('#view3d canvas').boundingBox();
+  const [sx, sy] = await page.evaluate((p) => window.studio.view.screenPoint(p), target);
+  await pathReady(() => page.mouse.dblclick(canvas3d.x + sx, canvas3d.y + sy));
+  const picked = await page.evaluate(() => window.studio.design.keyframes[4]);
+  check(picked && Math.hypot(picked.position[0] - target[0], picked.position[1] - target[1]) < 0.1,
+    `the keyframe stands where the floor was clicked (${JSON.stringify(picked && picked.position)} ~ ${JSON.stringify(target)})`);
+  await pathReady(() => page.locator('#keyframes tbody tr').nth(4).locator('button').click());
+  const plotted = await page.evaluate(() => {
+    const c = document.getElementById('plot');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 3; i < d.length; i += 4) if (d[i] > 0) n++;
+    return n;
+  });
+  check(plotted > 200, `speed and turn rate plotted (${plotted} pixels drawn)`);
+
   step('change fx and the frame rate');
   await page.fill('#fx', '60');
   await page.fill('#width', '64');
