@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "studio/json_fields.h"
+#include "render/lens.h"
 #include "trajectory/formats.h"
 
 namespace inet::studio {
@@ -32,49 +33,8 @@ std::string freeSequenceName(const fs::path& parent) {
   throw InputError(parent.string(), "sequence", "no free studio_NNN name left");
 }
 
-}  // namespace
-
-SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
-                                     const fs::path& out) {
-  checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence"});
-  SequenceRequest r;
-  r.design = parseDesignRequest(body);
-  SequenceJob& job = r.job;
-  job.scene = layout.scene_source;
-  job.fps = r.design.fps;
-  job.K.width = intIn(body, "width", 320, 16, 4096);
-  job.K.height = intIn(body, "height", 240, 16, 4096);
-  job.K.fx = job.K.fy = number(body, "fx", 300.0);
-  if (!(job.K.fx > 0 && job.K.fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
-  job.width_set = job.height_set = job.fx_set = job.fy_set = true;
-  job.spp = intIn(body, "spp", 4, 1, 4096);
-  job.out = out.string();
-  job.progress = false;
-  const fs::path parent = out / layout.scene.name;
-  job.sequence = text(body, "sequence", "");
-  if (job.sequence.empty()) job.sequence = freeSequenceName(parent);
-  if (job.sequence.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                     "0123456789-_") != std::string::npos ||
-      job.sequence.size() > 100)
-    throw InputError("", "sequence", "use up to 100 letters, digits, '-' and '_'");
-  if (fs::exists(parent / job.sequence))
-    throw InputError((parent / job.sequence).string(), "sequence",
-                     "exists already: choose another name");
-  r.trajectory_file = out / "studio" / (job.sequence + "_trajectory.csv");
-  return r;
-}
-
-json runSequenceRequest(const SequenceRequest& req, JobContext& ctx) {
-  Trajectory path = designTrajectory(req.design);
-  const TimeNs t0 = path.poses.front().t_ns;
-  for (TimedPose& p : path.poses) p.t_ns -= t0;
-  fs::create_directories(req.trajectory_file.parent_path());
-  writeTrajectory(req.trajectory_file.string(), path, TrajectoryFormat::Euroc);
-  SequenceJob job = req.job;
-  job.trajectory = req.trajectory_file.string();
-  job.frames = static_cast<int>(path.size());
-  job.frames_set = true;
-  const size_t n = path.size();
+/// Renders `job`'s n frames in ranges (see the header), reporting progress; the result JSON.
+json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobContext& ctx) {
   size_t done = 0, chunk = 1;
   double setup_s = 0, render_s = 0;
   SequenceJobResult last;
@@ -106,6 +66,73 @@ json runSequenceRequest(const SequenceRequest& req, JobContext& ctx) {
           {"files", s.files.size()},
           {"setup_s", std::round(setup_s * 100) / 100},
           {"render_s", std::round(render_s * 100) / 100}};
+}
+
+}  // namespace
+
+SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
+                                     const fs::path& out) {
+  checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence", "lens", "stereo",
+                         "exposure_ms", "readout_ms", "imu_rate", "passes"});
+  SequenceRequest r;
+  r.design = parseDesignRequest(body);
+  SequenceJob& job = r.job;
+  job.scene = layout.scene_source;
+  job.fps = r.design.fps;
+  job.K.width = intIn(body, "width", 320, 16, 4096);
+  job.K.height = intIn(body, "height", 240, 16, 4096);
+  job.K.fx = job.K.fy = number(body, "fx", 300.0);
+  if (!(job.K.fx > 0 && job.K.fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
+  job.width_set = job.height_set = true;
+  job.spp = intIn(body, "spp", 4, 1, 4096);
+  // the camera and sensors, as generate's flags (their own checks run with the job's)
+  job.lens.lens = text(body, "lens", "pinhole");
+  const LensType lens = parseLensType(job.lens.lens, "", "lens");
+  // a fisheye's and a panorama's focal length follows from the image size
+  job.fx_set = job.fy_set = lens == LensType::Pinhole || lens == LensType::ThinLens;
+  job.stereo = number(body, "stereo", 0.0);
+  if (!(job.stereo >= 0 && job.stereo <= 10)) throw InputError("", "stereo", "must be in 0..10 m");
+  job.exposure_ms = number(body, "exposure_ms", 0.0);
+  if (!(job.exposure_ms >= 0 && job.exposure_ms <= 1000))
+    throw InputError("", "exposure_ms", "must be in 0..1000 ms");
+  job.readout_ms = number(body, "readout_ms", 0.0);
+  if (!(job.readout_ms >= 0 && job.readout_ms <= 1000))
+    throw InputError("", "readout_ms", "must be in 0..1000 ms");
+  job.imu_rate = number(body, "imu_rate", job.imu_rate);
+  if (!(job.imu_rate == 0 || (job.imu_rate >= 1 && job.imu_rate <= 100000)))
+    throw InputError("", "imu_rate", "must be 0 (no IMU) or in 1..100000 Hz");
+  job.passes = text(body, "passes", job.passes);
+  job.out = out.string();
+  job.progress = false;
+  const fs::path parent = out / layout.scene.name;
+  job.sequence = text(body, "sequence", "");
+  if (job.sequence.empty()) job.sequence = freeSequenceName(parent);
+  if (job.sequence.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                     "0123456789-_") != std::string::npos ||
+      job.sequence.size() > 100)
+    throw InputError("", "sequence", "use up to 100 letters, digits, '-' and '_'");
+  if (fs::exists(parent / job.sequence))
+    throw InputError((parent / job.sequence).string(), "sequence",
+                     "exists already: choose another name");
+  r.trajectory_file = out / "studio" / (job.sequence + "_trajectory.csv");
+  return r;
+}
+
+json runSequenceRequest(const SequenceRequest& req, JobContext& ctx) {
+  Trajectory path = designTrajectory(req.design);
+  const TimeNs t0 = path.poses.front().t_ns;
+  for (TimedPose& p : path.poses) p.t_ns -= t0;
+  fs::create_directories(req.trajectory_file.parent_path());
+  writeTrajectory(req.trajectory_file.string(), path, TrajectoryFormat::Euroc);
+  SequenceJob job = req.job;
+  job.trajectory = req.trajectory_file.string();
+  job.frames = static_cast<int>(path.size());
+  job.frames_set = true;
+  try {
+    return renderInRanges(req, job, path.size(), ctx);
+  } catch (const InputError& e) {  // the pipeline words its checks as generate's flags
+    throw InputError(e.file(), flagToKey(e.field()), flagToKey(e.problem()));
+  }
 }
 
 }  // namespace inet::studio

@@ -4,8 +4,13 @@
 //
 // Request (POST /api/jobs/sequence): the design keys (studio/design_api.h) and
 //   {"width": 16..4096 (320), "height": 16..4096 (240), "fx": pixels (0, 100000] (300;
-//    fy = fx, principal point at the centre), "spp": 1..4096 (4),
-//    "sequence": a plain folder name (default: the first free studio_NNN)}
+//    fy = fx, principal point at the centre; pinhole and thin lens only), "spp": 1..4096 (4),
+//    "sequence": a plain folder name (default: the first free studio_NNN),
+//    "lens": pinhole | thin_lens | fisheye | panorama, "stereo": baseline 0..10 m (0 = mono),
+//    "exposure_ms", "readout_ms" (rolling shutter): 0..1000, "imu_rate": 0 (none) or Hz (800),
+//    "passes": as generate --passes ("default")}
+// The pipeline checks the combination when the job starts (a fisheye's square image, a
+// panorama's 2:1, passes' names); its messages name these keys.
 // The path is written as EuRoC (lossless) to <out>/studio/<sequence>_trajectory.csv and the
 // sequence goes to <out>/<layout name>/<sequence>/ as `interiornet generate --layout SOURCE
 // --trajectory that-file --fps FPS --width W --height H --fx FX --fy FX --spp SPP --sequence

@@ -229,6 +229,15 @@ TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
   req = twoKeyframes();
   req["width"] = 4;
   expectError(post("/api/jobs/sequence", req), "width");
+  req = twoKeyframes();
+  req["lens"] = "orthographic";
+  expectError(post("/api/jobs/sequence", req), "lens");
+  req = twoKeyframes();
+  req["stereo"] = -0.1;
+  expectError(post("/api/jobs/sequence", req), "stereo");
+  req = twoKeyframes();
+  req["imu_rate"] = 0.5;
+  expectError(post("/api/jobs/sequence", req), "imu_rate");
   auto c = clientOf(*server);
   auto r = c.Post("/api/design/path", "{\"keyframes\": [", "application/json");
   ASSERT_TRUE(r);
@@ -275,6 +284,39 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   ASSERT_TRUE(cancel);
   EXPECT_EQ(cancel->status, 409) << cancel->body;
   EXPECT_EQ(c.Delete("/api/jobs/0123")->status, 404);
+}
+
+/// Polls a job until it finishes (60 s at most).
+json waitForJob(httplib::Client& c, const std::string& url) {
+  json s;
+  for (int i = 0; i < 600; ++i) {
+    s = jsonOf(c.Get(url.c_str()));
+    if (s["state"] != "pending" && s["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return s;
+}
+
+TEST_F(StudioDesignTest, SequenceJobSensors) {
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.2;
+  req["fps"] = 5;  // 2 frames
+  req.update({{"width", 32}, {"height", 24}, {"fx", 30}, {"spp", 1}, {"stereo", 0.1},
+              {"imu_rate", 0}, {"passes", "rgb,depth"}, {"sequence", "stereo"}});
+  auto c = clientOf(*server);
+  const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(s["state"], "done") << s.dump();
+  const fs::path dir = s["result"]["dir"].get<std::string>();
+  EXPECT_TRUE(fs::is_directory(dir / "cam1" / "data"));  // the stereo camera
+  EXPECT_FALSE(fs::exists(dir / "imu0"));                // imu_rate 0
+  EXPECT_FALSE(fs::exists(dir / "normal0"));             // passes rgb,depth
+  // the pipeline's own check, named by the request's key: a fisheye image is square
+  req.update({{"lens", "fisheye"}, {"sequence", "fisheye"}});
+  const json f = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(f["state"], "failed") << f.dump();
+  const std::string msg = f["error"]["error"];
+  EXPECT_EQ(msg.find("--"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("square"), std::string::npos) << msg;
 }
 
 }  // namespace

@@ -70,7 +70,8 @@ function showJob(text, state) {
 async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
-    height: num('height'), spp: num('spp') };
+    height: num('height'), spp: num('spp'), lens: $('lens').value, stereo: num('stereo'),
+    exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate') };
   try {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
