@@ -24,6 +24,8 @@ class LayoutGlb {
   /// The .glb file, once written. Rethrows what the export threw (an InputError, e.g. a
   /// texture that cannot be read).
   std::filesystem::path path() const;
+  /// The private temporary folder (mkdtemp, 0700) the file is written to; removed with this.
+  const std::filesystem::path& folder() const { return dir_; }
   /// How long the export took (s), 0 until it is done.
   double exportSeconds() const;
 

@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "studio/design_api.h"
+#include "studio/frame_preview.h"
 #include "studio/job_queue.h"
 #include "studio/layout_glb.h"
 #include "studio/loopback.h"
@@ -212,6 +213,7 @@ struct StudioServer::Impl {
   std::vector<Route> routes;
   std::unique_ptr<JobQueue> jobs;
   std::unique_ptr<LayoutGlb> glb;
+  std::unique_ptr<FramePreviewer> previewer;
   std::unique_ptr<std::counting_semaphore<1024>> compute;
   std::thread listener;
   std::atomic<bool> stopped{false};
@@ -235,6 +237,7 @@ struct StudioServer::Impl {
   void queued(const std::optional<std::string>& id, httplib::Response& res);
   void designPath(const std::string& body, httplib::Response& res);
   void designExport(const std::string& body, httplib::Response& res);
+  void previewFrame(const std::string& body, httplib::Response& res);
   void jobStatus(const std::string& id, httplib::Response& res) const;
   void cancelJob(const std::string& id, httplib::Response& res);
 };
@@ -415,6 +418,17 @@ void StudioServer::Impl::jobStatus(const std::string& id, httplib::Response& res
   sendJson(res, 200, s->toJson());
 }
 
+void StudioServer::Impl::previewFrame(const std::string& body, httplib::Response& res) {
+  const FramePreviewRequest r = parseFramePreview(parseBody(body));
+  std::string png;
+  {
+    SlotGuard slot(*compute);
+    png = previewer->png(r);
+  }
+  res.status = 200;
+  res.set_content(png, "image/png");
+}
+
 void StudioServer::Impl::cancelJob(const std::string& id, httplib::Response& res) {
   const JobQueue::Cancel c = jobs->cancel(id);
   if (c == JobQueue::Cancel::NotFound)
@@ -457,6 +471,8 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { submitSequence(c.body, res); }});
   routes.push_back({"POST", "/api/design/path", false,
                     [this](const Call& c, auto& res) { designPath(c.body, res); }});
+  routes.push_back({"POST", "/api/preview/frame", false,
+                    [this](const Call& c, auto& res) { previewFrame(c.body, res); }});
   routes.push_back({"POST", "/api/design/export", false,
                     [this](const Call& c, auto& res) { designExport(c.body, res); }});
   get("/api/layout/plan", false, [this](auto&, auto& res) { sendJson(res, 200, layout->plan); });
@@ -601,6 +617,7 @@ StudioServer::StudioServer(StudioOptions opt, std::shared_ptr<const StudioLayout
   impl_->jobs =
       std::make_unique<JobQueue>(JobQueue::Options{impl_->opt.job_workers, impl_->opt.max_jobs});
   impl_->glb = std::make_unique<LayoutGlb>(impl_->layout);
+  impl_->previewer = std::make_unique<FramePreviewer>(impl_->layout, impl_->glb->folder());
   impl_->addRoutes();
   impl_->configureHttp();
   impl_->installHandlers();

@@ -20,6 +20,8 @@
 //   POST /api/design/path            keyframes -> the camera path and its warnings
 //   POST /api/design/export          keyframes -> a trajectory file (studio/design_api.h)
 //   POST /api/jobs/sequence          render the path as a sequence (studio/sequence_api.h)
+//   POST /api/preview/frame          one frame's pass or low-spp colour as PNG
+//                                    (studio/frame_preview.h)
 // Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
 // one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 409 (cancelling a
 // finished job), 411 (chunked

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/image_io.h"
 #include "scene/gltf_export.h"
 #include "studio/design_api.h"
 #include "studio/server.h"
@@ -284,6 +285,37 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   ASSERT_TRUE(cancel);
   EXPECT_EQ(cancel->status, 409) << cancel->body;
   EXPECT_EQ(c.Delete("/api/jobs/0123")->status, 404);
+}
+
+TEST_F(StudioDesignTest, FramePreviewPasses) {
+  // the first pose of the two-keyframe path: looking along +x across the room
+  const json pose = jsonOf(post("/api/design/path", twoKeyframes()))["poses"][0];
+  for (const std::string pass : {"rgb", "depth", "normal", "label", "albedo"}) {
+    json req = {{"position", pose["position"]}, {"quaternion_xyzw", pose["quaternion_xyzw"]},
+                {"width", 40}, {"height", 30}, {"fx", 40}, {"spp", 2}, {"pass", pass}};
+    auto r = post("/api/preview/frame", req);
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << pass << ": " << r->body;
+    EXPECT_EQ(r->get_header_value("Content-Type"), "image/png");
+    const fs::path file = folders.tmp / (pass + ".png");
+    std::ofstream(file, std::ios::binary) << r->body;
+    const ImageU8 img = readPng8(file);
+    EXPECT_EQ(img.width, 40);
+    EXPECT_EQ(img.height, 30);
+    EXPECT_EQ(img.channels, pass == "depth" ? 1 : 3);
+    // the centre sees a wall 2.5 m away: something was hit there
+    int sum = 0;
+    for (int c = 0; c < img.channels; ++c) sum += img.at(20, 15, c);
+    EXPECT_GT(sum, 0) << pass;
+  }
+  expectError(post("/api/preview/frame", {{"position", {1, 1, 1}}}), "quaternion_xyzw");
+  expectError(post("/api/preview/frame", {{"position", {1, 1, 1}},
+                                          {"quaternion_xyzw", {0, 0, 0, 1}},
+                                          {"pass", "flow"}}),
+              "pass");
+  expectError(post("/api/preview/frame", {{"position", {1, 1, 1}},
+                                          {"quaternion_xyzw", {0, 0, 0, 2}}}),
+              "quaternion_xyzw");
 }
 
 /// Polls a job until it finishes (60 s at most).

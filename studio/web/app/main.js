@@ -6,6 +6,7 @@ import { getJson, post, postJson } from './api.js';
 import { Design } from './design.js';
 import { PlanView } from './plan.js';
 import { drawMotion } from './plot.js';
+import { FramePreview } from './preview.js';
 import { View3D } from './view3d.js';
 
 const $ = (id) => document.getElementById(id);
@@ -30,8 +31,12 @@ const design = new Design({
     planView.setDesign(design.keyframes, free, r ? r.poses : [], bad);
     view.setDesign(design.keyframes, free, r ? r.poses : [], bad);
     drawMotion($('plot'), r ? r.poses : []);
+    frame.setPoses(r ? r.poses : []);
   },
 });
+const frame = new FramePreview({ slider: $('frame-slider'), pass: $('frame-pass'),
+  img: $('frame-img'), info: $('frame-info'),
+  camera: () => ({ fx: num('fx'), width: num('width'), height: num('height'), spp: num('spp') }) });
 const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look));
 
 /// Poses inside a warned stretch of the path.

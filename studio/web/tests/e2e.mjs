@@ -177,6 +177,30 @@ try {
   check(result.fps === 5 && dt === 200000000, `path at 5 fps: ${result.frames} poses, ${dt} ns apart`);
   await page.screenshot({ path: join(shots, 'studio_4_camera.png') });
 
+  step('preview a frame of the path');
+  const frameReady = async (action) => {
+    const before = Number(await page.getAttribute('#frame-img', 'data-version') || 0);
+    await action();
+    await page.waitForFunction((v) => {
+      const el = document.getElementById('frame-img');
+      return el.dataset.state !== 'loading' && Number(el.dataset.version || 0) > v;
+    }, before, { timeout: 60000 });
+  };
+  for (const pass of ['depth', 'label', 'rgb']) {
+    await frameReady(async () => {
+      await page.locator('#frame-slider').fill(String(Math.floor(result.frames / 2)));
+      await page.selectOption('#frame-pass', pass);
+    });
+    const shown = await page.evaluate(() => {
+      const img = document.getElementById('frame-img');
+      return { state: img.dataset.state, w: img.naturalWidth, h: img.naturalHeight,
+        info: document.getElementById('frame-info').textContent };
+    });
+    check(shown.state === 'ready' && shown.w === 64 && shown.h === 48,
+      `${pass} preview ${shown.w} x ${shown.h}: ${shown.info}`);
+  }
+  await page.locator('#panel').screenshot({ path: join(shots, 'studio_7_frame.png') });
+
   step('export TUM and EuRoC');
   const exported = {};
   for (const [button, name] of [['#export-tum', 'groundtruth.txt'], ['#export-euroc', 'data.csv']]) {
