@@ -94,7 +94,8 @@ DesignRequest parseDesignRequest(const json& body) {
     throw InputError("", "fps",
                      fmt::format("{} s at {} fps is over {} poses", span_s, r.fps, kMaxPoses));
   r.clearance = number(body, "clearance", r.clearance);
-  if (!(r.clearance >= 0 && r.clearance <= 5)) throw InputError("", "clearance", "must be in 0..5 m");
+  if (!(r.clearance >= 0 && r.clearance <= 5))
+    throw InputError("", "clearance", "must be in 0..5 m");
   r.max_speed_mps = number(body, "max_speed", r.max_speed_mps);
   if (!(r.max_speed_mps > 0 && r.max_speed_mps <= 100))
     throw InputError("", "max_speed", "must be in (0, 100] m/s");
@@ -161,14 +162,10 @@ json runDesignRequest(const StudioLayout& layout, const DesignRequest& req) {
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double duration = (path.poses.back().t_ns - path.poses.front().t_ns) * 1e-9;
-  return {{"frames", path.size()},
-          {"fps", req.fps},
-          {"duration_s", duration},
-          {"max_speed_mps", max_speed},
-          {"max_turn_rate_dps", max_turn},
-          {"compute_ms", std::round(ms * 10) / 10},
-          {"poses", posesJson(path)},
-          {"keyframes", std::move(keyframes)},
+  return {{"frames", path.size()},          {"fps", req.fps},
+          {"duration_s", duration},         {"max_speed_mps", max_speed},
+          {"max_turn_rate_dps", max_turn},  {"compute_ms", std::round(ms * 10) / 10},
+          {"poses", posesJson(path)},       {"keyframes", std::move(keyframes)},
           {"warnings", std::move(warnings)}};
 }
 
@@ -187,13 +184,27 @@ DesignExport exportDesign(const DesignRequest& req, const std::string& format) {
     throw InputError("", "format", e.problem());
   }
   switch (f) {
-    case TrajectoryFormat::Tum: out.file_name = "groundtruth.txt"; break;
-    case TrajectoryFormat::Euroc: out.file_name = "data.csv"; break;
-    case TrajectoryFormat::Icl: out.file_name = "trajectory.gt.freiburg"; break;
-    case TrajectoryFormat::SlamBench: out.file_name = "groundtruth_slambench.txt"; break;
-    case TrajectoryFormat::SceneNet: out.file_name = "trajectory.log"; break;
-    case TrajectoryFormat::SceneNetV1: out.file_name = "trajectory_random_poses_SE3_3x4.txt"; break;
-    case TrajectoryFormat::Kitti: out.file_name = "poses.txt"; break;
+    case TrajectoryFormat::Tum:
+      out.file_name = "groundtruth.txt";
+      break;
+    case TrajectoryFormat::Euroc:
+      out.file_name = "data.csv";
+      break;
+    case TrajectoryFormat::Icl:
+      out.file_name = "trajectory.gt.freiburg";
+      break;
+    case TrajectoryFormat::SlamBench:
+      out.file_name = "groundtruth_slambench.txt";
+      break;
+    case TrajectoryFormat::SceneNet:
+      out.file_name = "trajectory.log";
+      break;
+    case TrajectoryFormat::SceneNetV1:
+      out.file_name = "trajectory_random_poses_SE3_3x4.txt";
+      break;
+    case TrajectoryFormat::Kitti:
+      out.file_name = "poses.txt";
+      break;
   }
   out.content_type = f == TrajectoryFormat::Euroc ? "text/csv" : "text/plain";
   return out;

@@ -49,8 +49,8 @@ struct DesignRequest {
 /// Throws unless `body` is an object whose keys are the design keys above or in `extra` (the
 /// route's own).
 void checkDesignKeys(const nlohmann::json& body, std::set<std::string> extra);
-/// Parses and checks the keys above (others are left to the caller: checkDesignKeys). Throws InputError("", key, problem); a keyframe's key is named
-/// "keyframes[3].position".
+/// Parses and checks the keys above (others are left to the caller: checkDesignKeys). Throws
+/// InputError("", key, problem); a keyframe's key is named "keyframes[3].position".
 DesignRequest parseDesignRequest(const nlohmann::json& body);
 
 /// The camera path through the keyframes (see above).

@@ -52,7 +52,9 @@ nlohmann::json floorPlan(const Scene& scene, const FreeSpace& space, const Floor
     hi = hi.cwiseMin(rhi + margin);
   }
   double cell = opt.cell_m;
-  auto count = [&](double extent) { return std::max(1, static_cast<int>(std::ceil(extent / cell))); };
+  auto count = [&](double extent) {
+    return std::max(1, static_cast<int>(std::ceil(extent / cell)));
+  };
   while (static_cast<double>(count(hi.x() - lo.x())) * count(hi.y() - lo.y()) > opt.max_cells)
     cell *= 1.25;
   const int nx = count(hi.x() - lo.x()), ny = count(hi.y() - lo.y());
@@ -69,9 +71,15 @@ nlohmann::json floorPlan(const Scene& scene, const FreeSpace& space, const Floor
     rows.push_back(std::move(row));
     tops.push_back(std::move(top));
   }
-  return {{"cell_m", cell},        {"origin", {x0, y0}},      {"nx", nx},
-          {"ny", ny},              {"floor_z", floor_z},      {"height_m", opt.height_m},
-          {"clearance_m", opt.clearance_m}, {"rows", std::move(rows)}, {"tops", std::move(tops)}};
+  return {{"cell_m", cell},
+          {"origin", {x0, y0}},
+          {"nx", nx},
+          {"ny", ny},
+          {"floor_z", floor_z},
+          {"height_m", opt.height_m},
+          {"clearance_m", opt.clearance_m},
+          {"rows", std::move(rows)},
+          {"tops", std::move(tops)}};
 }
 
 }  // namespace inet::studio

@@ -22,20 +22,13 @@ using nlohmann::json;
 
 namespace {
 
-int intIn(const json& body, const std::string& key, int fallback, int lo, int hi) {
-  const int64_t v = integer(body, key, fallback);
-  if (v < lo || v > hi) throw InputError("", key, fmt::format("must be in {}..{}", lo, hi));
-  return static_cast<int>(v);
-}
-
 Pass parsePreviewPass(const std::string& name) {
   if (name == "rgb") return Pass::Rgb;
   if (name == "depth") return Pass::DepthZ;
   if (name == "normal") return Pass::Normal;
   if (name == "label") return Pass::Label;
   if (name == "albedo") return Pass::Albedo;
-  throw InputError("", "pass",
-                   "unknown pass '" + name + "' (rgb, depth, normal, label, albedo)");
+  throw InputError("", "pass", "unknown pass '" + name + "' (rgb, depth, normal, label, albedo)");
 }
 
 /// Linear RGB scaled so that the median luminance of the pixels with light is 0.18, sRGB.
@@ -73,7 +66,8 @@ ImageU8 depthGrey(const ImageF& depth) {
 ImageU8 normalColours(const ImageF& n) {
   ImageU8 out(n.width, n.height, 3);
   for (size_t i = 0; i < n.data.size(); ++i)
-    out.data[i] = static_cast<uint8_t>(std::lround(255 * std::clamp((n.data[i] + 1) / 2, 0.f, 1.f)));
+    out.data[i] =
+        static_cast<uint8_t>(std::lround(255 * std::clamp((n.data[i] + 1) / 2, 0.f, 1.f)));
   return out;
 }
 
@@ -97,11 +91,12 @@ FramePreviewRequest parseFramePreview(const json& body) {
   if (!(std::abs(quat.norm() - 1) < 1e-3))
     throw InputError("", "quaternion_xyzw", "must have unit length");
   r.T_world_camera.q = quat.normalized();
-  const int w = intIn(body, "width", 160, 16, 1024), h = intIn(body, "height", 120, 16, 1024);
+  const int w = integerIn(body, "width", 160, 16, 1024);
+  const int h = integerIn(body, "height", 120, 16, 1024);
   const double fx = number(body, "fx", 150.0);
   if (!(fx > 0 && fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
   r.K = CameraIntrinsics::centred(w, h, fx);
-  r.spp = intIn(body, "spp", 4, 1, 64);
+  r.spp = integerIn(body, "spp", 4, 1, 64);
   r.pass = parsePreviewPass(text(body, "pass", "rgb"));
   return r;
 }

@@ -9,9 +9,10 @@
 //           "width": 16..1024 (160), "height": 16..1024 (120), "fx": pixels (150; fy = fx,
 //           principal point at the centre), "spp": 1..64 (4, rgb only),
 //           "pass": rgb | depth | normal | label | albedo (rgb)}
-// Images: rgb denoised (the renderer's edge-aware filter), metered (the median luminance of lit pixels to 0.18) and sRGB-encoded; depth the
-// z-depth as grey, near white, 0 where nothing was hit; normal (n + 1) / 2 in the camera frame's
-// colours as written by the dataset; label the NYU40 class colours; albedo sRGB.
+// Images: rgb denoised (the renderer's edge-aware filter), metered (the median luminance of lit
+// pixels to 0.18) and sRGB-encoded; depth the z-depth as grey, near white, 0 where nothing was hit;
+// normal (n + 1) / 2 in the camera frame's colours as written by the dataset; label the NYU40 class
+// colours; albedo sRGB.
 #include <nlohmann/json.hpp>
 
 #include <filesystem>

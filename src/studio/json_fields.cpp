@@ -54,6 +54,12 @@ int64_t integer(const json& body, const std::string& key, int64_t fallback) {
   return v.get<int64_t>();
 }
 
+int integerIn(const json& body, const std::string& key, int fallback, int lo, int hi) {
+  const int64_t v = integer(body, key, fallback);
+  if (v < lo || v > hi) throw InputError("", key, fmt::format("must be in {}..{}", lo, hi));
+  return static_cast<int>(v);
+}
+
 std::string text(const json& body, const std::string& key, const std::string& fallback) {
   if (!body.contains(key)) return fallback;
   const json& v = body.at(key);
@@ -64,8 +70,7 @@ std::string text(const json& body, const std::string& key, const std::string& fa
 Vec3 vec3(const json& body, const std::string& key) {
   if (!body.contains(key)) throw InputError("", key, "is missing");
   const json& v = body.at(key);
-  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
-      !v[2].is_number())
+  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
     throw InputError("", key, "must be [x, y, z] (metres), not " + v.dump());
   const Vec3 p(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
   if (!p.allFinite() || p.cwiseAbs().maxCoeff() > 1e6)

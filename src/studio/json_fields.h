@@ -20,6 +20,8 @@ void checkKeys(const nlohmann::json& body, const std::set<std::string>& keys,
 double number(const nlohmann::json& body, const std::string& key, double fallback);
 /// body[key] as an integer (no fraction), `fallback` when absent.
 int64_t integer(const nlohmann::json& body, const std::string& key, int64_t fallback);
+/// body[key] as an integer in lo..hi, `fallback` when absent.
+int integerIn(const nlohmann::json& body, const std::string& key, int fallback, int lo, int hi);
 /// body[key] as a string, `fallback` when absent.
 std::string text(const nlohmann::json& body, const std::string& key, const std::string& fallback);
 /// body[key] as three finite numbers [x, y, z]; required.

@@ -32,8 +32,7 @@ LayoutGlb::LayoutGlb(std::shared_ptr<const StudioLayout> layout)
             GltfExportOptions opt;
             opt.binary = true;
             exportGltf(layout->scene, file.string(), opt);
-            *seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             return file;
           }).share();
 }

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "studio/json_fields.h"
 #include "render/lens.h"
+#include "studio/json_fields.h"
 #include "trajectory/formats.h"
 
 namespace inet::studio {
@@ -17,12 +17,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-int intIn(const json& body, const std::string& key, int fallback, int lo, int hi) {
-  const int64_t v = integer(body, key, fallback);
-  if (v < lo || v > hi) throw InputError("", key, fmt::format("must be in {}..{}", lo, hi));
-  return static_cast<int>(v);
-}
 
 /// The first studio_NNN with no folder under `parent`.
 std::string freeSequenceName(const fs::path& parent) {
@@ -79,12 +73,12 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   SequenceJob& job = r.job;
   job.scene = layout.scene_source;
   job.fps = r.design.fps;
-  job.K.width = intIn(body, "width", 320, 16, 4096);
-  job.K.height = intIn(body, "height", 240, 16, 4096);
+  job.K.width = integerIn(body, "width", 320, 16, 4096);
+  job.K.height = integerIn(body, "height", 240, 16, 4096);
   job.K.fx = job.K.fy = number(body, "fx", 300.0);
   if (!(job.K.fx > 0 && job.K.fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
   job.width_set = job.height_set = true;
-  job.spp = intIn(body, "spp", 4, 1, 4096);
+  job.spp = integerIn(body, "spp", 4, 1, 4096);
   // the camera and sensors, as generate's flags (their own checks run with the job's)
   job.lens.lens = text(body, "lens", "pinhole");
   const LensType lens = parseLensType(job.lens.lens, "", "lens");

@@ -383,8 +383,7 @@ void StudioServer::Impl::queued(const std::optional<std::string>& id, httplib::R
 void StudioServer::Impl::submitSequence(const std::string& body, httplib::Response& res) {
   auto req = std::make_shared<SequenceRequest>(
       parseSequenceRequest(parseBody(body), *layout, opt.out_dir));
-  queued(jobs->submit("sequence",
-                      [req](JobContext& ctx) { return runSequenceRequest(*req, ctx); }),
+  queued(jobs->submit("sequence", [req](JobContext& ctx) { return runSequenceRequest(*req, ctx); }),
          res);
 }
 
@@ -435,7 +434,8 @@ void StudioServer::Impl::cancelJob(const std::string& id, httplib::Response& res
     return sendError(res, 404, fmt::format("no job '{}'", oneLine(id)));
   const JobStatus s = *jobs->status(id);
   if (c == JobQueue::Cancel::Finished)
-    return sendError(res, 409, fmt::format("job '{}' has finished ({})", id, jobStateName(s.state)));
+    return sendError(res, 409,
+                     fmt::format("job '{}' has finished ({})", id, jobStateName(s.state)));
   sendJson(res, c == JobQueue::Cancel::Removed ? 200 : 202, s.toJson(false));
 }
 
@@ -465,8 +465,8 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { preview(c.body, res); }});
   routes.push_back({"POST", "/api/jobs/trajectory", false,
                     [this](const Call& c, auto& res) { submitJob(c.body, res); }});
-  routes.push_back({"DELETE", "/api/jobs/", true,
-                    [this](const Call& c, auto& res) { cancelJob(c.rest, res); }});
+  routes.push_back(
+      {"DELETE", "/api/jobs/", true, [this](const Call& c, auto& res) { cancelJob(c.rest, res); }});
   routes.push_back({"POST", "/api/jobs/sequence", false,
                     [this](const Call& c, auto& res) { submitSequence(c.body, res); }});
   routes.push_back({"POST", "/api/design/path", false,

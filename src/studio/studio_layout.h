@@ -13,7 +13,7 @@
 namespace inet::studio {
 
 struct StudioLayout {
-  std::string source;  ///< what was given: a file path, builtin:room, procedural:<seed>
+  std::string source;        ///< what was given: a file path, builtin:room, procedural:<seed>
   SceneSource scene_source;  ///< how it was loaded (a sequence job loads it again the same way)
   Scene scene;
   std::unique_ptr<FreeSpace> space;

@@ -121,7 +121,8 @@ TEST_F(StudioDesignTest, PathThroughKeyframes) {
   // the first and last poses are the keyframes: at the position, looking at the point (the
   // camera's z axis), the image's x axis level
   const json keys = twoKeyframes()["keyframes"];
-  for (const auto& [pose, key] : {std::pair{p["poses"][0], keys[0]}, std::pair{p["poses"][10], keys[1]}}) {
+  for (const auto& [pose, key] :
+       {std::pair{p["poses"][0], keys[0]}, std::pair{p["poses"][10], keys[1]}}) {
     const Vec3 pos(pose["position"][0], pose["position"][1], pose["position"][2]);
     const Vec3 want(key["position"][0], key["position"][1], key["position"][2]);
     const Vec3 look(key["look_at"][0], key["look_at"][1], key["look_at"][2]);
@@ -270,8 +271,10 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   EXPECT_EQ(dir, folders.tmp / "out" / test::roomLayout()->scene.name / "s1");
   EXPECT_TRUE(fs::is_regular_file(dir / "cam0" / "sensor.yaml"));
   // the poses written are the path's
-  const Trajectory written = readTrajectory((dir / "state_groundtruth_estimate0/data.csv").string());
-  const json path = jsonOf(post("/api/design/path", json{{"keyframes", req["keyframes"]}, {"fps", 5}}));
+  const Trajectory written =
+      readTrajectory((dir / "state_groundtruth_estimate0/data.csv").string());
+  const json path =
+      jsonOf(post("/api/design/path", json{{"keyframes", req["keyframes"]}, {"fps", 5}}));
   ASSERT_EQ(written.size(), 3u);
   for (size_t i = 0; i < 3; ++i) {
     const json& p = path["poses"][i]["position"];
@@ -291,8 +294,13 @@ TEST_F(StudioDesignTest, FramePreviewPasses) {
   // the first pose of the two-keyframe path: looking along +x across the room
   const json pose = jsonOf(post("/api/design/path", twoKeyframes()))["poses"][0];
   for (const std::string pass : {"rgb", "depth", "normal", "label", "albedo"}) {
-    json req = {{"position", pose["position"]}, {"quaternion_xyzw", pose["quaternion_xyzw"]},
-                {"width", 40}, {"height", 30}, {"fx", 40}, {"spp", 2}, {"pass", pass}};
+    json req = {{"position", pose["position"]},
+                {"quaternion_xyzw", pose["quaternion_xyzw"]},
+                {"width", 40},
+                {"height", 30},
+                {"fx", 40},
+                {"spp", 2},
+                {"pass", pass}};
     auto r = post("/api/preview/frame", req);
     ASSERT_TRUE(r);
     ASSERT_EQ(r->status, 200) << pass << ": " << r->body;
@@ -309,13 +317,12 @@ TEST_F(StudioDesignTest, FramePreviewPasses) {
     EXPECT_GT(sum, 0) << pass;
   }
   expectError(post("/api/preview/frame", {{"position", {1, 1, 1}}}), "quaternion_xyzw");
-  expectError(post("/api/preview/frame", {{"position", {1, 1, 1}},
-                                          {"quaternion_xyzw", {0, 0, 0, 1}},
-                                          {"pass", "flow"}}),
+  expectError(post("/api/preview/frame",
+                   {{"position", {1, 1, 1}}, {"quaternion_xyzw", {0, 0, 0, 1}}, {"pass", "flow"}}),
               "pass");
-  expectError(post("/api/preview/frame", {{"position", {1, 1, 1}},
-                                          {"quaternion_xyzw", {0, 0, 0, 2}}}),
-              "quaternion_xyzw");
+  expectError(
+      post("/api/preview/frame", {{"position", {1, 1, 1}}, {"quaternion_xyzw", {0, 0, 0, 2}}}),
+      "quaternion_xyzw");
 }
 
 /// Polls a job until it finishes (60 s at most).
@@ -333,8 +340,14 @@ TEST_F(StudioDesignTest, SequenceJobSensors) {
   json req = twoKeyframes();
   req["keyframes"][1]["t"] = 0.2;
   req["fps"] = 5;  // 2 frames
-  req.update({{"width", 32}, {"height", 24}, {"fx", 30}, {"spp", 1}, {"stereo", 0.1},
-              {"imu_rate", 0}, {"passes", "rgb,depth"}, {"sequence", "stereo"}});
+  req.update({{"width", 32},
+              {"height", 24},
+              {"fx", 30},
+              {"spp", 1},
+              {"stereo", 0.1},
+              {"imu_rate", 0},
+              {"passes", "rgb,depth"},
+              {"sequence", "stereo"}});
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();

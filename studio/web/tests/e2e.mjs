@@ -97,14 +97,17 @@ try {
     const [u, v] = await page.evaluate((p) => window.studio.planView.canvasPoint(p[0], p[1]), xy);
     return [box.x + u, box.y + v];
   };
-  const pathReady = async (action) => {
-    const before = Number(await page.getAttribute('#path-info', 'data-version') || 0);
+  // runs action, then waits until the element's data-version grows and its data-state says
+  // the answer came (the path, the frame preview)
+  const answered = async (id, busy, action) => {
+    const before = Number(await page.getAttribute(`#${id}`, 'data-version') || 0);
     await action();
-    await page.waitForFunction((v) => {
-      const el = document.getElementById('path-info');
-      return el.dataset.state !== 'computing' && Number(el.dataset.version || 0) > v;
-    }, before, { timeout: 20000 });
+    await page.waitForFunction(([el_id, not, v]) => {
+      const el = document.getElementById(el_id);
+      return el.dataset.state !== not && Number(el.dataset.version || 0) > v;
+    }, [id, busy, before], { timeout: 60000 });
   };
+  const pathReady = (action) => answered('path-info', 'computing', action);
   for (let k = 0; k < 4; k++) {
     const [x, y] = await toPage(cells.free[k]);
     if (k === 3) {  // a drag: stand at the cell, look towards the first keyframe
@@ -178,14 +181,7 @@ try {
   await page.screenshot({ path: join(shots, 'studio_4_camera.png') });
 
   step('preview a frame of the path');
-  const frameReady = async (action) => {
-    const before = Number(await page.getAttribute('#frame-img', 'data-version') || 0);
-    await action();
-    await page.waitForFunction((v) => {
-      const el = document.getElementById('frame-img');
-      return el.dataset.state !== 'loading' && Number(el.dataset.version || 0) > v;
-    }, before, { timeout: 60000 });
-  };
+  const frameReady = (action) => answered('frame-img', 'loading', action);
   for (const pass of ['depth', 'label', 'rgb']) {
     await frameReady(async () => {
       await page.locator('#frame-slider').fill(String(Math.floor(result.frames / 2)));
