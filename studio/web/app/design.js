@@ -41,6 +41,22 @@ export class Design {
     this.changed();
   }
 
+  /// Keyframes from a trajectory's poses (t_ns, position, quaternion_xyzw): one every
+  /// `every_s` seconds and the last, each looking 1 m along its camera's z axis.
+  fromPoses(poses, every_s = 1) {
+    const slot = (p) => Math.floor(p.t_ns * 1e-9 / every_s);
+    const picked = poses.filter((p, i) => i === 0 || i === poses.length - 1 ||
+      slot(p) > slot(poses[i - 1]));
+    this.keyframes = picked.map((p) => {
+      const [x, y, z, w] = p.quaternion_xyzw;
+      // the third column of the rotation matrix: the camera's z axis in the world
+      const f = [2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)];
+      return { t: round(p.t_ns * 1e-9, 3), position: p.position.map((v) => round(v)),
+        look_at: p.position.map((v, k) => round(v + f[k])) };
+    }).filter((k, i, all) => i === 0 || k.t > all[i - 1].t);
+    this.changed();
+  }
+
   remove(i) {
     this.keyframes.splice(i, 1);
     this.changed();

@@ -101,12 +101,17 @@ async function generate() {
   }
 }
 
+let lastRandom = null;  // the random trajectory last previewed
+
 async function randomPreview() {
   const out = $('random-info');
   out.textContent = 'computing…';
   try {
     const t = await postJson('/api/trajectory/preview', {
-      type: $('random-type').value, frames: 250, fps: num('fps'), seed: num('random-seed') });
+      type: $('random-type').value, frames: 250, fps: num('fps'), seed: num('random-seed'),
+      v_mult: num('random-v'), w_mult: num('random-w'), style: $('random-style').value });
+    lastRandom = t;
+    $('random-keys').disabled = false;
     out.textContent = `${t.poses.length} poses (${t.type}, v_mult ${t.v_mult.toFixed(2)}, ` +
       `w_mult ${t.w_mult.toFixed(2)}) in ${t.compute_ms} ms: playing`;
     await view.play(t.poses, num('fx'), num('height'));
@@ -123,6 +128,9 @@ function wire() {
   $('generate').addEventListener('click', generate);
   $('random').addEventListener('click', randomPreview);
   $('clear').addEventListener('click', () => design.clear());
+  $('random-keys').addEventListener('click', () => {
+    if (lastRandom) design.fromPoses(lastRandom.poses);
+  });
   $('play').addEventListener('click', () => {
     if (design.result) view.play(design.result.poses, num('fx'), num('height'));
   });

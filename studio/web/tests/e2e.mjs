@@ -256,6 +256,21 @@ try {
   await page.waitForSelector('#job[data-state=cancelled], #job[data-state=done], #job[data-state=failed]',
     { timeout: 120000 });
   check(await page.getAttribute('#job', 'data-state') === 'cancelled', await page.textContent('#job'));
+  step('a random trajectory as editable keyframes');
+  await page.selectOption('#random-type', 'hand-held');
+  await page.fill('#random-seed', '1');
+  await page.click('#random');
+  await page.waitForFunction(() => /poses/.test(document.getElementById('random-info').textContent)
+    || /error|must/.test(document.getElementById('random-info').textContent), null, { timeout: 60000 });
+  const random = await page.textContent('#random-info');
+  check(/^250 poses \(hand-held/.test(random), random);
+  await pathReady(() => page.click('#random-keys'));
+  const keys = await page.evaluate(() => window.studio.design.keyframes);
+  // 250 poses at 5 fps are 49.8 s: one keyframe a second and the last
+  check(keys.length === 51 && keys.every((k, i) => i === 0 || k.t > keys[i - 1].t),
+    `${keys.length} keyframes from it, times rising; ${await page.textContent('#path-info')}`);
+  await page.evaluate(() => window.studio.view.stop());
+
   check(errors.length === 0, `no errors on the page or its console ${JSON.stringify(errors.slice(0, 3))}`);
 } finally {
   await browser.close();
