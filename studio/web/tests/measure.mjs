@@ -4,16 +4,18 @@
 // Frame timing while the view orbits and redraws every frame), with the coarse copy a moving
 // view draws and with the full model.
 //   node measure.mjs --binary build/apps/interiornet [--layout procedural:11] [--orbit-ms 5000]
-//     [--screenshot FILE]
+//     [--screenshot FILE] [--viewport 1400x900]
 import { launch, options, skipUnlessBrowser, startStudio } from './lib.mjs';
 
 skipUnlessBrowser();
-const opt = options({ binary: '', layout: 'procedural:11', 'orbit-ms': '5000', screenshot: '' });
+const opt = options({ binary: '', layout: 'procedural:11', 'orbit-ms': '5000', screenshot: '',
+  viewport: '1400x900' });
+const [vw, vh] = opt.viewport.split('x').map(Number);
 const studio = await startStudio(opt.binary, ['--layout', opt.layout]);
 const browser = await launch();
 try {
   const health = await (await fetch(`${studio.url}api/layout`)).json();
-  const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  const page = await browser.newPage({ viewport: { width: vw, height: vh } });
   const t0 = Date.now();
   await page.goto(studio.url);
   await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 120000 });
