@@ -2,6 +2,7 @@
 // binary (src/studio/). This file only parses options.
 #include <csignal>
 #include <cstdio>
+#include <random>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,7 +24,16 @@ struct StudioArgs {
   std::string web;
   std::vector<std::string> data;  ///< NAME=DIR
   size_t max_body_kib = 1024;
+  bool no_token = false;
 };
+
+/// 128 random bits as 32 hex digits: the access token when none is given.
+std::string randomToken() {
+  std::random_device rd;
+  std::string out;
+  for (int i = 0; i < 4; ++i) out += fmt::format("{:08x}", rd());
+  return out;
+}
 
 /// "--data NAME=DIR" into the options' data roots.
 void addDataRoots(const std::vector<std::string>& specs, studio::StudioOptions& opt) {
@@ -45,6 +55,9 @@ void runStudio(StudioArgs a) {
   if (a.max_body_kib < 1 || a.max_body_kib > 1024 * 1024)
     throw InputError("", "--max-body", "must be in 1..1048576 KiB");
   a.opt.max_body_bytes = a.max_body_kib * 1024;
+  if (a.no_token && !a.opt.token.empty())
+    throw InputError("", "--no-token", "--token and --no-token together");
+  if (!a.no_token && a.opt.token.empty()) a.opt.token = randomToken();
   if (a.scene.isDefault()) a.scene.default_apartment = catalogsAvailable();
   std::fprintf(stderr, "studio: loading %s\n",
                a.scene.isDefault()
@@ -53,12 +66,13 @@ void runStudio(StudioArgs a) {
   const auto layout = studio::loadStudioLayout(a.scene);
   studio::StudioServer server(a.opt, layout);
   std::printf("studio: serving %s (layout %s, loaded in %.1f s); Ctrl-C stops\n",
-              server.url().c_str(), layout->scene.name.c_str(), layout->load_s);
+              server.openUrl().c_str(), layout->scene.name.c_str(), layout->load_s);
+  const std::string query = a.opt.token.empty() ? "" : "?token=" + a.opt.token;
   if (!a.opt.allow_remote)
     std::printf(
         "studio: from another machine: ssh -L %d:localhost:%d THIS_HOST, then open "
-        "http://localhost:%d/\n",
-        server.port(), server.port(), server.port());
+        "http://localhost:%d/%s\n",
+        server.port(), server.port(), server.port(), query.c_str());
   std::fflush(stdout);  // a script or test reads the port from a pipe
   const int sig = server.runUntilStopSignal();
   std::printf("studio: stopped by %s\n", sig == SIGINT    ? "SIGINT"
@@ -82,8 +96,9 @@ void registerStudio(CLI::App& app) {
       "  laptop$ ssh -L 8080:localhost:8080 node   # then, on node: interiornet studio\n"
       "  and open http://localhost:8080/ in the laptop's browser.\n"
       "--allow-remote serves other machines directly: the studio has no login and no "
-      "encryption, so anyone who reaches the port can read the --data folders and start jobs. "
-      "Other users of a shared machine can reach its loopback too.");
+      "encryption, so anyone who reaches the port and has the token can read the --data "
+      "folders and start jobs. Other users of a shared machine can reach its loopback too: the "
+      "access token (printed in the URL, kept by the browser as a cookie) keeps them out.");
   auto a = std::make_shared<StudioArgs>();
   addSceneFlags(*cmd, a->scene,
                 "the built-in apartment (builtin:apartment) where the Sweet Home 3D catalogs are "
@@ -110,6 +125,12 @@ void registerStudio(CLI::App& app) {
                   "a time as the machine has cores");
   cmd->add_option("--max-body", a->max_body_kib, "largest request body in KiB (default 1024)");
   cmd->add_flag("--log", a->opt.log_requests, "print one line per request on stderr");
+  cmd->add_option("--token", a->opt.token,
+                  "the access token every request must carry (16..128 letters, digits, - and "
+                  "_); default: a random one, in the URL printed");
+  cmd->add_flag("--no-token", a->no_token,
+                "no access token: anyone who can reach the port (every user of this machine) "
+                "can use the studio");
   cmd->callback([a] { runStudio(*a); });
 }
 

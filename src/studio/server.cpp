@@ -93,6 +93,40 @@ void sendError(httplib::Response& res, int status, const std::string& message,
   sendJson(res, status, {{"error", oneLine(message)}, {"file", file}, {"field", field}});
 }
 
+/// The value of cookie `name` in the request's Cookie headers, or "".
+std::string cookieValue(const httplib::Request& req, const std::string& name) {
+  for (size_t i = 0; i < req.get_header_value_count("Cookie"); ++i) {
+    const std::string header = req.get_header_value("Cookie", i);
+    size_t at = 0;
+    while (at < header.size()) {
+      const size_t end = std::min(header.find(';', at), header.size());
+      std::string pair = header.substr(at, end - at);
+      pair.erase(0, pair.find_first_not_of(' '));
+      if (pair.rfind(name + "=", 0) == 0) return pair.substr(name.size() + 1);
+      at = end + 1;
+    }
+  }
+  return "";
+}
+
+/// a == b in time that depends on the lengths only.
+bool sameSecret(const std::string& a, const std::string& b) {
+  unsigned char diff = a.size() == b.size() ? 0 : 1;
+  for (size_t i = 0; i < a.size(); ++i)
+    diff |= static_cast<unsigned char>(a[i] ^ (i < b.size() ? b[i] : 0));
+  return diff == 0;
+}
+
+/// `target` with the value of any token= query parameter replaced by "...", for the log.
+std::string redactToken(std::string target) {
+  for (size_t at = target.find("token="); at != std::string::npos;
+       at = target.find("token=", at + 6)) {
+    const size_t end = std::min(target.find('&', at), target.size());
+    target.replace(at + 6, end - at - 6, "...");
+  }
+  return target;
+}
+
 /// The path part of the raw request target (still percent-encoded).
 std::string rawPath(const httplib::Request& req) {
   return req.target.substr(0, req.target.find('?'));
@@ -221,6 +255,7 @@ struct StudioServer::Impl {
   const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 
   void checkOptions();
+  bool checkToken(const httplib::Request& req, httplib::Response& res) const;
   void bind();
   void addRoutes();
   void configureHttp();
@@ -254,6 +289,11 @@ void StudioServer::Impl::checkOptions() {
   range(opt.max_preview_frames, 1, 10'000'000, "max_preview_frames");
   range(opt.max_job_frames, 1, 10'000'000, "max_job_frames");
   if (opt.max_body_bytes < 64) throw InputError("", "max_body_bytes", "must be >= 64");
+  if (!opt.token.empty() &&
+      (opt.token.size() < 16 || opt.token.size() > 128 ||
+       opt.token.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                   "0123456789-_") != std::string::npos))
+    throw InputError("", "--token", "use 16..128 letters, digits, '-' and '_'");
   if (!opt.allow_remote && !isLoopbackHost(opt.host))
     throw InputError("", "--host",
                      fmt::format("'{}' is not a loopback address; serving other machines needs "
@@ -479,6 +519,34 @@ void StudioServer::Impl::addRoutes() {
   get("/api/layout.glb", false, [this](auto&, auto& res) { sendFile(res, glb->path()); });
 }
 
+/// False (and the response made) unless the request carries the access token. A request that
+/// brings it as ?token= gets the cookie; a page request is then sent to its path without it.
+bool StudioServer::Impl::checkToken(const httplib::Request& req, httplib::Response& res) const {
+  if (opt.token.empty()) return true;
+  const std::string auth = req.get_header_value("Authorization");
+  const bool query = req.has_param("token");
+  const std::string given = query                          ? req.get_param_value("token")
+                            : auth.rfind("Bearer ", 0) == 0 ? auth.substr(7)
+                                                            : cookieValue(req, "inet_studio_token");
+  if (!sameSecret(given, opt.token)) {
+    sendError(res, 401,
+              given.empty() ? "this studio needs its access token: open the URL it printed "
+                              "(.../?token=...) or send Authorization: Bearer TOKEN"
+                            : "wrong access token",
+              "", "token");
+    return false;
+  }
+  if (!query) return true;
+  res.set_header("Set-Cookie",
+                 "inet_studio_token=" + opt.token + "; Path=/; HttpOnly; SameSite=Strict");
+  const std::string raw = rawPath(req);
+  if (req.method == "GET" && raw.rfind("/api/", 0) != 0) {  // keep the token out of the history
+    res.set_redirect(raw, 303);
+    return false;
+  }
+  return true;
+}
+
 void StudioServer::Impl::dispatch(const httplib::Request& req, const std::string& body,
                                   httplib::Response& res) {
   if (!opt.allow_remote && !isLoopbackHostHeader(req.get_header_value("Host")))
@@ -487,6 +555,7 @@ void StudioServer::Impl::dispatch(const httplib::Request& req, const std::string
                                  "localhost (see --allow-remote)",
                                  oneLine(req.get_header_value("Host"))),
                      "", "Host");
+  if (!checkToken(req, res)) return;
   const std::string raw = rawPath(req);
   const std::string method = req.method == "HEAD" ? "GET" : req.method;
   const bool api = raw == "/api" || raw.rfind("/api/", 0) == 0;
@@ -599,8 +668,8 @@ void StudioServer::Impl::installHandlers() {
       });
   if (opt.log_requests)
     http.set_logger([](const httplib::Request& req, const httplib::Response& res) {
-      std::fprintf(stderr, "studio: %s %s %d\n", req.method.c_str(), oneLine(req.target).c_str(),
-                   res.status);
+      std::fprintf(stderr, "studio: %s %s %d\n", req.method.c_str(),
+                   oneLine(redactToken(req.target)).c_str(), res.status);
     });
 }
 
@@ -641,6 +710,10 @@ std::string StudioServer::url() const {
                                ? "[" + impl_->opt.host + "]"
                                : impl_->opt.host;
   return fmt::format("http://{}:{}/", host, impl_->port);
+}
+
+std::string StudioServer::openUrl() const {
+  return impl_->opt.token.empty() ? url() : url() + "?token=" + impl_->opt.token;
 }
 
 void StudioServer::start() {

@@ -23,12 +23,15 @@
 //   POST /api/preview/frame          one frame's pass or low-spp colour as PNG
 //                                    (studio/frame_preview.h)
 // Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
-// one-line messages), 403 (a refused path or Host), 404, 405 (with Allow), 409 (cancelling a
+// one-line messages), 401 (no or a wrong access token), 403 (a refused path or Host), 404, 405 (with Allow), 409 (cancelling a
 // finished job), 411 (chunked
 // bodies), 413 (body over max_body_bytes), 415 (POST without application/json), 503 (job store
 // full), 500 (a bug).
 //
-// Security rules: loopback by default (binding elsewhere needs allow_remote and warns); without
+// Security rules: with a token (the command line makes one unless told not to), every request
+// carries it: `Authorization: Bearer TOKEN`, or the cookie inet_studio_token (HttpOnly,
+// SameSite=Strict) set when a request brings ?token=TOKEN (a page request is then redirected
+// to the same path without it); compared in constant time. Loopback by default (binding elsewhere needs allow_remote and warns); without
 // allow_remote only Host headers naming the loopback are answered (DNS rebinding); files only
 // below the web root and the data roots (studio/safe_path.h); POST bodies must be JSON (so a
 // cross-site form cannot post, and a cross-site fetch needs a CORS preflight, which is refused);
@@ -60,6 +63,10 @@ struct StudioOptions {
   int max_preview_frames = 5000;
   int max_job_frames = 100000;
   bool log_requests = false;  ///< one line per request on stderr
+  /// The access token every request must carry ("" = none): a cookie the page gets from the
+  /// printed URL's ?token=..., or `Authorization: Bearer TOKEN`. Letters, digits, '-', '_';
+  /// 16..128 characters.
+  std::string token;
   /// Where sequence jobs write (<out>/<layout name>/<sequence>/, as `generate --out`).
   std::filesystem::path out_dir = "out";
 };
@@ -86,6 +93,8 @@ class StudioServer {
   std::string boundAddress() const;
   /// "http://HOST:PORT/" (IPv6 hosts in brackets).
   std::string url() const;
+  /// The URL to open: url() with "?token=TOKEN" when there is a token.
+  std::string openUrl() const;
 
   /// Accepts connections on a background thread; returns once it does.
   void start();

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/error.h"
 #include "core/image_io.h"
 #include "scene/gltf_export.h"
 #include "studio/design_api.h"
@@ -323,6 +324,41 @@ TEST_F(StudioDesignTest, FramePreviewPasses) {
   expectError(
       post("/api/preview/frame", {{"position", {1, 1, 1}}, {"quaternion_xyzw", {0, 0, 0, 2}}}),
       "quaternion_xyzw");
+}
+
+TEST(StudioToken, EveryRequestCarriesIt) {
+  test::StudioFolders folders;
+  StudioOptions o = folders.options();
+  o.token = "0123456789abcdef-token";
+  StudioServer server(o, test::roomLayout());
+  server.start();
+  EXPECT_EQ(server.openUrl(), server.url() + "?token=0123456789abcdef-token");
+  auto c = clientOf(server);
+  for (const char* path : {"/api/health", "/", "/app.js", "/api/layout.glb", "/api/files"})
+    test::expectJsonError(c.Get(path), 401, "token");
+  test::expectJsonError(c.Post("/api/design/path", "{}", "application/json"), 401, "token");
+  // the wrong token, the right one as a bearer, as a cookie, and in the query
+  test::expectJsonError(c.Get("/api/health", {{"Authorization", "Bearer 0123456789abcdef-toke"}}),
+                        401, "token");
+  auto r = c.Get("/api/health", {{"Authorization", "Bearer 0123456789abcdef-token"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  r = c.Get("/app.js", {{"Cookie", "other=1; inet_studio_token=0123456789abcdef-token"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  // the printed URL: the cookie is set and the page is reloaded without the token
+  r = c.Get("/?token=0123456789abcdef-token");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 303);
+  EXPECT_EQ(r->get_header_value("Location"), "/");
+  EXPECT_EQ(r->get_header_value("Set-Cookie"),
+            "inet_studio_token=0123456789abcdef-token; Path=/; HttpOnly; SameSite=Strict");
+  r = c.Get("/api/health?token=0123456789abcdef-token");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  // a token that is too short is refused at start
+  o.token = "short";
+  EXPECT_THROW(StudioServer(o, test::roomLayout()), InputError);
 }
 
 /// Polls a job until it finishes (60 s at most).

@@ -119,13 +119,14 @@ long rssKibOf(pid_t pid) {
 
 /// `n` clients, each on its own thread and connection, post a 250-frame preview at once;
 /// returns how many got their poses.
-int concurrentPreviews(int port, int n, int round) {
+int concurrentPreviews(int port, const std::string& token, int n, int round) {
   std::atomic<int> ok{0};
   std::vector<std::thread> clients;
   for (int i = 0; i < n; ++i)
     clients.emplace_back([&, i] {
       httplib::Client c("127.0.0.1", port);
       c.set_read_timeout(60, 0);
+      c.set_bearer_token_auth(token);
       const nlohmann::json body = {{"frames", 250}, {"seed", round * 1000 + i}};
       auto r = c.Post("/api/trajectory/preview", body.dump(), "application/json");
       if (r && r->status == 200 && nlohmann::json::parse(r->body)["poses"].size() == 250) ++ok;
@@ -137,13 +138,20 @@ int concurrentPreviews(int port, int n, int round) {
 TEST(StudioCli, ServesOnAFreePortAndStopsCleanlyOnSigterm) {
   StudioProcess studio({"--layout", "builtin:room", "--port", "0"});
   ASSERT_GT(studio.pid(), 0);
-  const std::smatch m =
-      studio.waitForLine(std::regex(R"(serving http://127\.0\.0\.1:(\d+)/)"), 60.0);
+  const std::smatch m = studio.waitForLine(
+      std::regex(R"(serving http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{32}) )"), 60.0);
   ASSERT_FALSE(m.empty()) << "no URL printed; stdout so far:\n" << studio.output();
   const int port = std::stoi(m[1].str());
+  const std::string token = m[2].str();
   ASSERT_GT(port, 0);
   httplib::Client c("127.0.0.1", port);
+  // a random access token: nothing without it
   auto r = c.Get("/api/health");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 401);
+  EXPECT_EQ(c.Get("/")->status, 401);
+  c.set_bearer_token_auth(token);
+  r = c.Get("/api/health");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);
   EXPECT_EQ(nlohmann::json::parse(r->body)["status"], "ok");
@@ -159,7 +167,7 @@ TEST(StudioCli, ServesOnAFreePortAndStopsCleanlyOnSigterm) {
   const long rss_start = rssKibOf(studio.pid());
   std::vector<long> rss;
   for (int round = 0; round < 4; ++round) {
-    EXPECT_EQ(concurrentPreviews(port, 50, round), 50) << "round " << round + 1;
+    EXPECT_EQ(concurrentPreviews(port, token, 50, round), 50) << "round " << round + 1;
     rss.push_back(rssKibOf(studio.pid()));
   }
   std::cout << "studio e2e: server VmRSS " << rss_start << " KiB after start, after each round of "

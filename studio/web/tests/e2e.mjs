@@ -71,7 +71,7 @@ try {
 
   step('load the layout');
   const t_load = Date.now();
-  await page.goto(studio.url);
+  await page.goto(studio.open_url);
   await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 60000 });
   check(await page.getAttribute('#status', 'data-state') === 'ready',
     `page ready in ${Date.now() - t_load} ms: ${await page.textContent('#status')}`);

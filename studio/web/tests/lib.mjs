@@ -34,7 +34,8 @@ export function options(defaults) {
   return out;
 }
 
-/// Starts the studio; resolves with {url, proc, stop(), started_ms (until the URL was printed)}.
+/// Starts the studio; resolves with {url (the base), open_url (with ?token=), token, proc,
+/// stop(), started_ms (until the URL was printed)}.
 export function startStudio(binary, args) {
   return new Promise((resolve, reject) => {
     const t0 = Date.now();
@@ -44,10 +45,10 @@ export function startStudio(binary, args) {
     proc.stderr.on('data', (d) => { err += d; });
     proc.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
+      const m = out.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)(\?token=([\w-]+))? /);
       if (!m) return;
       clearTimeout(timer);
-      resolve({ url: m[1], proc, started_ms: Date.now() - t0, stderr: () => err,
+      resolve({ url: m[1], open_url: m[1] + (m[2] || ''), token: m[3] || '', proc, started_ms: Date.now() - t0, stderr: () => err,
         stop: () => new Promise((done) => { proc.once('exit', (code) => done(code)); proc.kill('SIGTERM'); }) });
     });
     proc.on('exit', (code) => { clearTimeout(timer); reject(new Error(`studio exited ${code}:\n${out}\n${err}`)); });

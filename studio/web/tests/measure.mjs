@@ -14,10 +14,11 @@ const [vw, vh] = opt.viewport.split('x').map(Number);
 const studio = await startStudio(opt.binary, ['--layout', opt.layout]);
 const browser = await launch();
 try {
-  const health = await (await fetch(`${studio.url}api/layout`)).json();
+  const health = await (await fetch(`${studio.url}api/layout`,
+    { headers: { Authorization: `Bearer ${studio.token}` } })).json();
   const page = await browser.newPage({ viewport: { width: vw, height: vh } });
   const t0 = Date.now();
-  await page.goto(studio.url);
+  await page.goto(studio.open_url);
   await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 120000 });
   const load_ms = Date.now() - t0;
   const inPage = await page.evaluate(() => ({ load_ms: window.studio.load_ms, glb_ms: window.studio.glb_ms }));
