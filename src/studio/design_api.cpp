@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "studio/json_fields.h"
+#include "sensors/imu.h"
 #include "trajectory/spectrum.h"
 
 namespace inet::studio {
@@ -167,6 +168,39 @@ json runDesignRequest(const StudioLayout& layout, const DesignRequest& req) {
           {"max_turn_rate_dps", max_turn},  {"compute_ms", std::round(ms * 10) / 10},
           {"poses", posesJson(path)},       {"keyframes", std::move(keyframes)},
           {"warnings", std::move(warnings)}};
+}
+
+json runImuRequest(const json& body) {
+  checkDesignKeys(body, {"imu_rate", "noise"});
+  const DesignRequest req = parseDesignRequest(body);
+  ImuOptions opt;
+  opt.rate_hz = number(body, "imu_rate", 200.0);
+  if (!(opt.rate_hz >= 1 && opt.rate_hz <= 2000))
+    throw InputError("", "imu_rate", "must be in 1..2000 Hz");
+  const std::string noise = text(body, "noise", "none");
+  if (noise != "none" && noise != "euroc")
+    throw InputError("", "noise", "unknown IMU noise '" + noise + "' (none, euroc)");
+  opt.noise = noise == "euroc" ? ImuNoise::euroc() : ImuNoise::none();
+  Trajectory path = designTrajectory(req);
+  if (path.size() < 2)
+    throw InputError("", "keyframes", "an IMU needs a path of at least 2 poses");
+  const TimeNs t0 = path.poses.front().t_ns;
+  for (TimedPose& p : path.poses) p.t_ns -= t0;
+  const ImuSequence imu = simulateImu(path, opt);
+  json samples = json::array();
+  double max_gyro = 0, max_accel = 0;
+  for (const ImuSample& m : imu.measured) {
+    samples.push_back({{"t_ns", m.t_ns},
+                       {"gyro", {m.gyro.x(), m.gyro.y(), m.gyro.z()}},
+                       {"accel", {m.accel.x(), m.accel.y(), m.accel.z()}}});
+    max_gyro = std::max(max_gyro, m.gyro.norm());
+    max_accel = std::max(max_accel, m.accel.norm());
+  }
+  return {{"rate_hz", opt.rate_hz},
+          {"noise", noise},
+          {"samples", std::move(samples)},
+          {"max_gyro_rad_s", max_gyro},
+          {"max_accel_m_s2", max_accel}};
 }
 
 DesignExport exportDesign(const DesignRequest& req, const std::string& format) {

@@ -59,6 +59,15 @@ Trajectory designTrajectory(const DesignRequest& req);
 /// The path's poses with the free-space checks: the response above.
 nlohmann::json runDesignRequest(const StudioLayout& layout, const DesignRequest& req);
 
+/// The IMU an IMU at the camera would measure along the path (POST /api/design/imu): the
+/// design keys plus "imu_rate" (Hz, 1..2000, 200) and "noise" (none | euroc: the ADIS16448's
+/// densities, seed 0). sensors/imu.h's simulateImu: the poses, a B-spline through them, its
+/// acceleration and body rate; gravity (0, 0, -9.81) is measured as the accelerometer does.
+/// {"rate_hz", "noise", "samples": [{"t_ns", "gyro": [x, y, z] rad/s, "accel": [x, y, z]
+///  m/s^2}, ...] (IMU frame = camera frame, t from the first pose), "max_gyro_rad_s",
+///  "max_accel_m_s2"}
+nlohmann::json runImuRequest(const nlohmann::json& body);
+
 /// An export: the trajectory file's text in `format` (formats.h's names) and the file name a
 /// download gets (TUM groundtruth.txt, EuRoC data.csv, ...).
 struct DesignExport {

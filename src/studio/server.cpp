@@ -511,6 +511,11 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { submitSequence(c.body, res); }});
   routes.push_back({"POST", "/api/design/path", false,
                     [this](const Call& c, auto& res) { designPath(c.body, res); }});
+  routes.push_back({"POST", "/api/design/imu", false, [this](const Call& c, auto& res) {
+                      const json request = parseBody(c.body);
+                      SlotGuard slot(*compute);
+                      sendJson(res, 200, runImuRequest(request));
+                    }});
   routes.push_back({"POST", "/api/preview/frame", false,
                     [this](const Call& c, auto& res) { previewFrame(c.body, res); }});
   routes.push_back({"POST", "/api/design/export", false,

@@ -19,6 +19,7 @@
 //   GET  /api/layout.glb             the layout as binary glTF (studio/layout_glb.h)
 //   POST /api/design/path            keyframes -> the camera path and its warnings
 //   POST /api/design/export          keyframes -> a trajectory file (studio/design_api.h)
+//   POST /api/design/imu             keyframes -> the IMU samples along the path
 //   POST /api/jobs/sequence          render the path as a sequence (studio/sequence_api.h)
 //   POST /api/preview/frame          one frame's pass or low-spp colour as PNG
 //                                    (studio/frame_preview.h)

@@ -326,6 +326,30 @@ TEST_F(StudioDesignTest, FramePreviewPasses) {
       "quaternion_xyzw");
 }
 
+TEST_F(StudioDesignTest, ImuAlongThePath) {
+  // a camera standing still, level, looking along +x: the accelerometer reads gravity's
+  // reaction along the camera's up, which is -y (OpenCV: y down); the gyroscope reads nothing
+  json req = {{"keyframes",
+               {{{"t", 0.0}, {"position", {2.5, 1.0, 1.5}}, {"look_at", {3.5, 1.0, 1.5}}},
+                {{"t", 1.0}, {"position", {2.5, 1.0, 1.5}}, {"look_at", {3.5, 1.0, 1.5}}}}},
+              {"fps", 25},
+              {"imu_rate", 100}};
+  const json imu = jsonOf(post("/api/design/imu", req));
+  ASSERT_TRUE(imu.contains("samples")) << imu.dump();
+  EXPECT_EQ(imu["samples"].size(), 101u);  // 0..1 s at 100 Hz
+  for (const json& m : imu["samples"]) {
+    EXPECT_NEAR(m["accel"][0].get<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(m["accel"][1].get<double>(), -9.81, 1e-6);
+    EXPECT_NEAR(m["accel"][2].get<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(Vec3(m["gyro"][0], m["gyro"][1], m["gyro"][2]).norm(), 0.0, 1e-9);
+  }
+  req["noise"] = "loud";
+  expectError(post("/api/design/imu", req), "noise");
+  req["noise"] = "none";
+  req["imu_rate"] = 5000;
+  expectError(post("/api/design/imu", req), "imu_rate");
+}
+
 TEST(StudioToken, EveryRequestCarriesIt) {
   test::StudioFolders folders;
   StudioOptions o = folders.options();

@@ -5,7 +5,7 @@
 import { getJson, post, postJson } from './api.js';
 import { Design } from './design.js';
 import { PlanView } from './plan.js';
-import { drawMotion } from './plot.js';
+import { drawImu, drawMotion } from './plot.js';
 import { FramePreview } from './preview.js';
 import { View3D } from './view3d.js';
 
@@ -32,12 +32,32 @@ const design = new Design({
     view.setDesign(design.keyframes, free, r ? r.poses : [], bad);
     drawMotion($('plot'), r ? r.poses : []);
     frame.setPoses(r ? r.poses : []);
+    updateImu(r);
   },
 });
 const frame = new FramePreview({ slider: $('frame-slider'), pass: $('frame-pass'),
   img: $('frame-img'), info: $('frame-info'),
   camera: () => ({ fx: num('fx'), width: num('width'), height: num('height'), spp: num('spp') }) });
 const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look));
+
+let imuVersion = 0;
+/// The IMU plot for path result r (a newer path wins over an older request).
+async function updateImu(r) {
+  const version = ++imuVersion;
+  const el = $('imu-plot');
+  el.dataset.state = 'loading';
+  let imu = null;
+  if (r && r.frames >= 2) {
+    try {
+      imu = await postJson('/api/design/imu', { ...design.request(), imu_rate: 100 });
+    } catch (err) {
+      imu = null;
+    }
+  }
+  if (version !== imuVersion) return;
+  drawImu(el, imu);
+  el.dataset.state = imu ? 'ready' : 'empty';
+}
 
 /// Poses inside a warned stretch of the path.
 function badPoses(r) {

@@ -56,3 +56,40 @@ export function drawMotion(canvas, poses) {
   ctx.textAlign = 'right';
   ctx.fillText(`${t_max.toFixed(1)} s`, w - 2, h - 2);
 }
+
+/// The IMU along the path (POST /api/design/imu: camera frame, gravity included): the
+/// accelerometer's x, y, z (m/s^2) above, the gyroscope's (rad/s) below, red, green, blue.
+export function drawImu(canvas, imu) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = canvas.clientWidth, h = canvas.clientHeight;
+  canvas.width = Math.round(w * dpr);
+  canvas.height = Math.round(h * dpr);
+  const ctx = canvas.getContext('2d');
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.clearRect(0, 0, w, h);
+  const s = imu ? imu.samples : [];
+  if (s.length < 2) return;
+  const t_max = s[s.length - 1].t_ns * 1e-9 || 1;
+  const x = (t) => 40 + (w - 50) * t / t_max;
+  const colours = ['#d03030', '#20a040', '#3050d0'];
+  ctx.font = '10px system-ui, sans-serif';
+  [['accel', 'm/s²'], ['gyro', 'rad/s']].forEach(([key, unit], pane) => {
+    const top = pane * h / 2 + 3, height = h / 2 - 6;
+    const span = Math.max(1e-6, ...s.map((m) => Math.max(...m[key].map(Math.abs))));
+    const y = (v) => top + height / 2 - (height / 2) * v / span;
+    ctx.strokeStyle = '#ccc';
+    ctx.beginPath();
+    ctx.moveTo(x(0), y(0));
+    ctx.lineTo(x(t_max), y(0));
+    ctx.stroke();
+    for (let a = 0; a < 3; a++) {
+      ctx.strokeStyle = colours[a];
+      ctx.beginPath();
+      s.forEach((m, i) => ctx[i ? 'lineTo' : 'moveTo'](x(m.t_ns * 1e-9), y(m[key][a])));
+      ctx.stroke();
+    }
+    ctx.fillStyle = '#444';
+    ctx.textAlign = 'left';
+    ctx.fillText(`${key} ±${span.toFixed(span < 10 ? 1 : 0)} ${unit}`, 2, top + 10);
+  });
+}

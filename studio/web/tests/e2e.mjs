@@ -165,6 +165,8 @@ try {
     return n;
   });
   check(plotted > 200, `speed and turn rate plotted (${plotted} pixels drawn)`);
+  await page.waitForSelector('#imu-plot[data-state=ready]', { timeout: 20000 });
+  check(true, 'the IMU along the path plotted');
 
   step('change fx and the frame rate');
   await page.fill('#fx', '60');
