@@ -52,8 +52,12 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
                               static_cast<size_t>(std::ceil(4 * last.setup_s / per_frame))});
   }
   const auto& s = last.sequences.front();
+  json dirs = json::array();
+  for (const auto& q : last.sequences)
+    dirs.push_back({{"dir", q.dir}, {"configuration", q.configuration}});
   return {{"sequence", job.sequence},
           {"dir", s.dir},
+          {"sequences", std::move(dirs)},
           {"trajectory_file", req.trajectory_file.string()},
           {"frames", s.frames},
           {"finished", s.finished},
@@ -67,7 +71,7 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
 SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
                                      const fs::path& out) {
   checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence", "lens", "stereo",
-                         "exposure_ms", "readout_ms", "imu_rate", "passes"});
+                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config"});
   SequenceRequest r;
   r.design = parseDesignRequest(body);
   SequenceJob& job = r.job;
@@ -96,6 +100,7 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   if (!(job.imu_rate == 0 || (job.imu_rate >= 1 && job.imu_rate <= 100000)))
     throw InputError("", "imu_rate", "must be 0 (no IMU) or in 1..100000 Hz");
   job.passes = text(body, "passes", job.passes);
+  job.config = text(body, "config", job.config);  // original, lighting:N, rearranged:N, ...
   job.out = out.string();
   job.progress = false;
   const fs::path parent = out / layout.scene.name;

@@ -8,7 +8,8 @@
 //    "sequence": a plain folder name (default: the first free studio_NNN),
 //    "lens": pinhole | thin_lens | fisheye | panorama, "stereo": baseline 0..10 m (0 = mono),
 //    "exposure_ms", "readout_ms" (rolling shutter): 0..1000, "imu_rate": 0 (none) or Hz (800),
-//    "passes": as generate --passes ("default")}
+//    "passes": as generate --passes ("default"),
+//    "config": as generate --config ("original"; lighting:N, rearranged:N, comma lists)}
 // The pipeline checks the combination when the job starts (a fisheye's square image, a
 // panorama's 2:1, passes' names); its messages name these keys.
 // The path is written as EuRoC (lossless) to <out>/studio/<sequence>_trajectory.csv and the
@@ -19,7 +20,8 @@
 // ranges. The first range is one frame; the next are long enough that reloading the scene
 // costs at most a fifth of one, and re-rendering the frames temporal reuse warms up on at most
 // a half.
-// Result: {"sequence", "dir", "trajectory_file", "frames", "finished", "files", "setup_s",
+// Result: {"sequence", "dir" (the first configuration's), "sequences": [{"dir",
+//          "configuration"}, ...], "trajectory_file", "frames", "finished", "files", "setup_s",
 //          "render_s"}.
 #include <nlohmann/json.hpp>
 

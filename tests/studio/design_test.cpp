@@ -350,6 +350,40 @@ TEST_F(StudioDesignTest, ImuAlongThePath) {
   expectError(post("/api/design/imu", req), "imu_rate");
 }
 
+/// Polls a job until it finishes (60 s at most).
+json waitForJob(httplib::Client& c, const std::string& url) {
+  json s;
+  for (int i = 0; i < 600; ++i) {
+    s = jsonOf(c.Get(url.c_str()));
+    if (s["state"] != "pending" && s["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return s;
+}
+
+TEST_F(StudioDesignTest, SequenceJobConfigurations) {
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.2;
+  req["fps"] = 5;  // 2 frames
+  req.update({{"width", 32}, {"height", 24}, {"fx", 30}, {"spp", 1}, {"imu_rate", 0},
+              {"passes", "rgb,depth"}, {"config", "original,lighting:1"}, {"sequence", "configs"}});
+  auto c = clientOf(*server);
+  const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(s["state"], "done") << s.dump();
+  const json& seqs = s["result"]["sequences"];
+  ASSERT_EQ(seqs.size(), 2u) << s.dump();
+  EXPECT_EQ(seqs[0]["configuration"], "original");
+  EXPECT_EQ(seqs[1]["configuration"], "lighting:1");
+  EXPECT_NE(seqs[0]["dir"], seqs[1]["dir"]);
+  for (const json& q : seqs)
+    EXPECT_TRUE(fs::is_directory(fs::path(q["dir"].get<std::string>()) / "cam0" / "data"));
+  // the pipeline's message, with the request's key
+  req.update({{"config", "sunset"}, {"sequence", "bad_config"}});
+  const json f = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(f["state"], "failed") << f.dump();
+  EXPECT_EQ(f["error"]["field"], "config") << f.dump();
+}
+
 TEST(StudioToken, EveryRequestCarriesIt) {
   test::StudioFolders folders;
   StudioOptions o = folders.options();
@@ -383,17 +417,6 @@ TEST(StudioToken, EveryRequestCarriesIt) {
   // a token that is too short is refused at start
   o.token = "short";
   EXPECT_THROW(StudioServer(o, test::roomLayout()), InputError);
-}
-
-/// Polls a job until it finishes (60 s at most).
-json waitForJob(httplib::Client& c, const std::string& url) {
-  json s;
-  for (int i = 0; i < 600; ++i) {
-    s = jsonOf(c.Get(url.c_str()));
-    if (s["state"] != "pending" && s["state"] != "running") break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return s;
 }
 
 TEST_F(StudioDesignTest, SequenceJobSensors) {

@@ -96,7 +96,8 @@ async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
     height: num('height'), spp: num('spp'), lens: $('lens').value, stereo: num('stereo'),
-    exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate') };
+    exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate'),
+    config: $('config').value };
   try {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
@@ -109,7 +110,8 @@ async function generate() {
       if (s.state === 'cancelled') return showJob(`job ${job.id}: ${s.message}`, 'cancelled');
       if (s.state === 'done') {
         const r = s.result;
-        return showJob(`done: ${r.frames} frames in ${r.dir} (${r.files} files, ` +
+        const dirs = r.sequences.map((q) => q.dir).join(', ');
+        return showJob(`done: ${r.frames} frames in ${dirs} (${r.files} files, ` +
           `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
       }
       if (s.state === 'failed') return showJob(`failed: ${s.error.error}`, 'failed');
