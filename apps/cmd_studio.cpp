@@ -52,6 +52,7 @@ void runStudio(StudioArgs a) {
   installStopHandlers();  // a stop signal while the layout loads ends the studio right after
   addDataRoots(a.data, a.opt);
   if (!a.web.empty()) a.opt.web_root = a.web;
+  a.opt.serve_out = true;  // the page shows what its jobs wrote (/api/files/out/...)
   if (a.max_body_kib < 1 || a.max_body_kib > 1024 * 1024)
     throw InputError("", "--max-body", "must be in 1..1048576 KiB");
   a.opt.max_body_bytes = a.max_body_kib * 1024;
@@ -115,7 +116,7 @@ void registerStudio(CLI::App& app) {
                   "share/interiornet/studio/web; $INET_STUDIO_WEB overrides)");
   cmd->add_option("--out", a->opt.out_dir,
                   "where \"generate sequence\" writes: <out>/<layout name>/<sequence>/, as "
-                  "generate --out (default out)");
+                  "generate --out (default out); served read-only at /api/files/out/...");
   cmd->add_option("--data", a->data,
                   "NAME=DIR: serve DIR's files read-only at /api/files/NAME/... (repeatable; "
                   "nothing else on disk is served, not even the layout's folder unless given)")

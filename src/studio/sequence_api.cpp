@@ -59,6 +59,7 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
           {"dir", s.dir},
           {"sequences", std::move(dirs)},
           {"trajectory_file", req.trajectory_file.string()},
+          {"contact_sheet", "studio/" + job.sequence + "_sheet.png"},
           {"frames", s.frames},
           {"finished", s.finished},
           {"files", s.files.size()},
@@ -114,6 +115,7 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
     throw InputError((parent / job.sequence).string(), "sequence",
                      "exists already: choose another name");
   r.trajectory_file = out / "studio" / (job.sequence + "_trajectory.csv");
+  job.contact_sheet = (out / "studio" / (job.sequence + "_sheet.png")).string();
   return r;
 }
 

@@ -21,8 +21,9 @@
 // costs at most a fifth of one, and re-rendering the frames temporal reuse warms up on at most
 // a half.
 // Result: {"sequence", "dir" (the first configuration's), "sequences": [{"dir",
-//          "configuration"}, ...], "trajectory_file", "frames", "finished", "files", "setup_s",
-//          "render_s"}.
+//          "configuration"}, ...], "trajectory_file", "contact_sheet" (up to 6 colour frames of
+//          the first configuration, PNG, relative to <out>: studio/<sequence>_sheet.png),
+//          "frames", "finished", "files", "setup_s", "render_s"}.
 #include <nlohmann/json.hpp>
 
 #include <filesystem>

@@ -305,6 +305,10 @@ void StudioServer::Impl::checkOptions() {
   web_root = fs::canonical(web, ec);
   if (ec || !fs::is_directory(web_root))
     throw InputError(web.string(), "--web", "the studio's web folder does not exist");
+  if (opt.serve_out && opt.data_roots.count("out") == 0) {
+    fs::create_directories(opt.out_dir, ec);
+    opt.data_roots["out"] = opt.out_dir;
+  }
   for (const auto& [name, dir] : opt.data_roots) {
     if (name.empty() ||
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"

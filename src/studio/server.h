@@ -70,6 +70,9 @@ struct StudioOptions {
   std::string token;
   /// Where sequence jobs write (<out>/<layout name>/<sequence>/, as `generate --out`).
   std::filesystem::path out_dir = "out";
+  /// Also serve out_dir read-only as the data root "out" (made if missing), so the page can
+  /// show what the jobs wrote (the command line does; a "--data out=..." of its own wins).
+  bool serve_out = false;
 };
 
 /// The studio's page: $INET_STUDIO_WEB, else the bundle the build made (<build>/studio/web),

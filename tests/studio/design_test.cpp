@@ -29,6 +29,7 @@ class StudioDesignTest : public ::testing::Test {
   void SetUp() override {
     StudioOptions o = folders.options();
     o.out_dir = folders.tmp / "out";
+    o.serve_out = true;
     server = std::make_unique<StudioServer>(o, test::roomLayout());
     server->start();
   }
@@ -271,6 +272,11 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   const fs::path dir = res["dir"].get<std::string>();
   EXPECT_EQ(dir, folders.tmp / "out" / test::roomLayout()->scene.name / "s1");
   EXPECT_TRUE(fs::is_regular_file(dir / "cam0" / "sensor.yaml"));
+  // its contact sheet, served from the out folder
+  auto sheet = c.Get(("/api/files/out/" + res["contact_sheet"].get<std::string>()).c_str());
+  ASSERT_TRUE(sheet);
+  EXPECT_EQ(sheet->status, 200);
+  EXPECT_EQ(sheet->get_header_value("Content-Type"), "image/png");
   // the poses written are the path's
   const Trajectory written =
       readTrajectory((dir / "state_groundtruth_estimate0/data.csv").string());

@@ -102,6 +102,7 @@ async function generate() {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
     $('cancel').disabled = false;
+    $('job-sheet').hidden = true;
     $('cancel').onclick = () => fetch(job.status_url, { method: 'DELETE' });
     for (;;) {
       const s = await getJson(job.status_url);
@@ -111,6 +112,9 @@ async function generate() {
       if (s.state === 'done') {
         const r = s.result;
         const dirs = r.sequences.map((q) => q.dir).join(', ');
+        // the contact sheet the job wrote below --out, which the studio serves as "out"
+        $('job-sheet').hidden = false;
+        $('job-sheet').src = `/api/files/out/${r.contact_sheet}`;
         return showJob(`done: ${r.frames} frames in ${dirs} (${r.files} files, ` +
           `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
       }

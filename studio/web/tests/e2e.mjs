@@ -248,6 +248,10 @@ try {
       `the sequence's camera has fx 60 and 64x48: ${yaml.match(/intrinsics.*|resolution.*/g)}`);
     const images = readdirSync(join(m[1], 'cam0', 'data')).length;
     check(images === result.frames, `${images} frames rendered of ${result.frames}`);
+    await page.waitForFunction(() => document.getElementById('job-sheet').complete, null,
+      { timeout: 20000 });
+    const sheet = await page.evaluate(() => document.getElementById('job-sheet').naturalWidth);
+    check(sheet > 0, `the sequence's contact sheet shown (${sheet} px wide)`);
   }
   await page.screenshot({ path: join(shots, 'studio_6_sequence.png') });
 
