@@ -275,6 +275,8 @@ struct StudioServer::Impl {
   void previewFrame(const std::string& body, httplib::Response& res);
   void jobStatus(const std::string& id, httplib::Response& res) const;
   void cancelJob(const std::string& id, httplib::Response& res);
+  void jobEvents(const std::string& id, httplib::Response& res);
+  std::atomic<int> streams{0};  ///< progress streams open (jobEvents)
 };
 
 void StudioServer::Impl::checkOptions() {
@@ -472,6 +474,47 @@ void StudioServer::Impl::previewFrame(const std::string& body, httplib::Response
   res.set_content(png, "image/png");
 }
 
+/// GET /api/jobs/<id>/events: the job's status as server-sent events, one event each time it
+/// changes state, progress or message (checked every 50 ms), a comment every second otherwise, until it has finished. Each
+/// stream holds an HTTP worker, so at most a quarter of them stream at once (503 beyond).
+void StudioServer::Impl::jobEvents(const std::string& id, httplib::Response& res) {
+  if (!jobs->status(id)) return sendError(res, 404, fmt::format("no job '{}'", oneLine(id)));
+  const int max_streams = std::max(1, opt.threads / 4);
+  if (streams.fetch_add(1) >= max_streams) {
+    --streams;
+    return sendError(res, 503,
+                     fmt::format("{} progress streams are open; poll /api/jobs/{} instead",
+                                 max_streams, oneLine(id)));
+  }
+  auto last = std::make_shared<std::string>();
+  res.set_chunked_content_provider(
+      "text/event-stream",
+      [this, id, last](size_t, httplib::DataSink& sink) {
+        for (int i = 0; i < 20 && !stopped; ++i) {
+          const auto s = jobs->status(id);
+          if (!s) break;  // forgotten (the store is bounded)
+          // a change of state, progress or message (elapsed_ms alone changes all the time)
+          const std::string key =
+              fmt::format("{}|{}|{}", jobStateName(s->state), s->progress, s->message);
+          if (key != *last) {
+            *last = key;
+            const std::string data = "data: " + s->toJson().dump() + "\n\n";
+            if (!sink.write(data.data(), data.size())) return false;
+            if (s->state != JobState::Pending && s->state != JobState::Running) sink.done();
+            return true;
+          }
+          std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        if (stopped || !jobs->status(id)) {
+          sink.done();
+          return true;
+        }
+        static const std::string ping = ": ping\n\n";
+        return sink.write(ping.data(), ping.size());
+      },
+      [this](bool) { --streams; });
+}
+
 void StudioServer::Impl::cancelJob(const std::string& id, httplib::Response& res) {
   const JobQueue::Cancel c = jobs->cancel(id);
   if (c == JobQueue::Cancel::NotFound)
@@ -504,7 +547,13 @@ void StudioServer::Impl::addRoutes() {
     for (const JobStatus& s : jobs->list()) list.push_back(s.toJson(false));
     sendJson(res, 200, {{"jobs", list}});
   });
-  get("/api/jobs/", true, [this](const Call& c, auto& res) { jobStatus(c.rest, res); });
+  get("/api/jobs/", true, [this](const Call& c, auto& res) {
+    const std::string suffix = "/events";
+    if (c.rest.size() > suffix.size() &&
+        c.rest.compare(c.rest.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return jobEvents(c.rest.substr(0, c.rest.size() - suffix.size()), res);
+    jobStatus(c.rest, res);
+  });
   routes.push_back({"POST", "/api/trajectory/preview", false,
                     [this](const Call& c, auto& res) { preview(c.body, res); }});
   routes.push_back({"POST", "/api/jobs/trajectory", false,

@@ -13,6 +13,7 @@
 //   POST /api/jobs/trajectory        the same as a background job: 202 {"id", ...}
 //   GET  /api/jobs                   every stored job, without results
 //   GET  /api/jobs/<id>              a job's state, progress, message and result
+//   GET  /api/jobs/<id>/events       the same as server-sent events until it has finished
 //   DELETE /api/jobs/<id>            cancel: 200 (was pending), 202 (running: stops at its next
 //                                    safe point), 409 (finished), 404
 //   GET  /api/layout/plan            the floor plan raster (studio/floor_plan.h)

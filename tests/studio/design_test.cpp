@@ -258,12 +258,23 @@ TEST_F(StudioDesignTest, SequenceJobRendersThePath) {
   ASSERT_EQ(r->status, 202) << r->body;
   const std::string url = jsonOf(r)["status_url"];
   auto c = clientOf(*server);
-  json s;
-  for (int i = 0; i < 600; ++i) {
-    s = jsonOf(c.Get(url.c_str()));
-    if (s["state"] == "done" || s["state"] == "failed") break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
+  // its progress as server-sent events, one per change, the last one when it is done
+  std::string stream;
+  auto events = c.Get((url + "/events").c_str(), [&](const char* data, size_t n) {
+    stream.append(data, n);
+    return true;
+  });
+  ASSERT_TRUE(events);
+  EXPECT_EQ(events->status, 200);
+  EXPECT_EQ(events->get_header_value("Content-Type"), "text/event-stream");
+  std::vector<json> statuses;
+  std::istringstream lines(stream);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("data: ", 0) == 0) statuses.push_back(json::parse(line.substr(6)));
+  ASSERT_GE(statuses.size(), 2u) << stream;
+  for (size_t i = 1; i < statuses.size(); ++i)
+    EXPECT_GE(statuses[i]["progress"].get<double>(), statuses[i - 1]["progress"].get<double>());
+  const json s = statuses.back();
   ASSERT_EQ(s["state"], "done") << s.dump();
   EXPECT_EQ(s["progress"], 1.0);
   const json& res = s["result"];

@@ -92,6 +92,39 @@ function showJob(text, state) {
   $('job').dataset.state = state;
 }
 
+const finished = (s) => s.state !== 'pending' && s.state !== 'running';
+
+/// Follows a job until it has finished: its progress streamed (GET .../events, server-sent
+/// events), or polled when the stream is refused or breaks. Resolves with the final status.
+function follow(job, onStatus) {
+  return new Promise((resolve, reject) => {
+    const poll = async () => {
+      try {
+        for (;;) {
+          const s = await getJson(job.status_url);
+          if (finished(s)) return resolve(s);
+          onStatus(s);
+          await new Promise((r) => setTimeout(r, 300));
+        }
+      } catch (err) {
+        reject(err);
+      }
+    };
+    if (!window.EventSource) return poll();
+    const events = new EventSource(`${job.status_url}/events`);
+    events.onmessage = (e) => {
+      const s = JSON.parse(e.data);
+      if (!finished(s)) return onStatus(s);
+      events.close();
+      resolve(s);
+    };
+    events.onerror = () => {
+      events.close();
+      poll();
+    };
+  });
+}
+
 async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
@@ -104,24 +137,21 @@ async function generate() {
     $('cancel').disabled = false;
     $('job-sheet').hidden = true;
     $('cancel').onclick = () => fetch(job.status_url, { method: 'DELETE' });
-    for (;;) {
-      const s = await getJson(job.status_url);
-      $('job-progress').value = s.progress;
-      if (s.state !== 'pending' && s.state !== 'running') $('cancel').disabled = true;
-      if (s.state === 'cancelled') return showJob(`job ${job.id}: ${s.message}`, 'cancelled');
-      if (s.state === 'done') {
-        const r = s.result;
-        const dirs = r.sequences.map((q) => q.dir).join(', ');
-        // the contact sheet the job wrote below --out, which the studio serves as "out"
-        $('job-sheet').hidden = false;
-        $('job-sheet').src = `/api/files/out/${r.contact_sheet}`;
-        return showJob(`done: ${r.frames} frames in ${dirs} (${r.files} files, ` +
-          `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
-      }
-      if (s.state === 'failed') return showJob(`failed: ${s.error.error}`, 'failed');
-      showJob(`job ${job.id}: ${s.state}, ${s.message}`, s.state);
-      await new Promise((r) => setTimeout(r, 300));
-    }
+    const s = await follow(job, (st) => {
+      $('job-progress').value = st.progress;
+      showJob(`job ${job.id}: ${st.state}, ${st.message}`, st.state);
+    });
+    $('job-progress').value = s.progress;
+    $('cancel').disabled = true;
+    if (s.state === 'cancelled') return showJob(`job ${job.id}: ${s.message}`, 'cancelled');
+    if (s.state === 'failed') return showJob(`failed: ${s.error.error}`, 'failed');
+    const r = s.result;
+    const dirs = r.sequences.map((q) => q.dir).join(', ');
+    // the contact sheet the job wrote below --out, which the studio serves as "out"
+    $('job-sheet').hidden = false;
+    $('job-sheet').src = `/api/files/out/${r.contact_sheet}`;
+    showJob(`done: ${r.frames} frames in ${dirs} (${r.files} files, ` +
+      `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
   } catch (err) {
     showJob(err.message, 'failed');
   }

@@ -65,6 +65,8 @@ const browser = await launch();
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
   const errors = [];
+  const streamed = [];  // the progress streams the page opened
+  page.on('request', (r) => { if (r.url().endsWith('/events')) streamed.push(r.url()); });
   page.on('pageerror', (e) => errors.push(e.message));
   // console errors too: a Content-Security-Policy refusal (a texture, a script) is only logged
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
@@ -241,6 +243,7 @@ try {
   await page.waitForSelector('#job[data-state=done], #job[data-state=failed]', { timeout: 300000 });
   const job = await page.textContent('#job');
   check(await page.getAttribute('#job', 'data-state') === 'done', `${job} (${Date.now() - t_job} ms)`);
+  check(streamed.length === 1, `its progress streamed (${streamed.join(', ')})`);
   const m = job.match(/ in (\S+) \(/);
   if (m) {
     const yaml = readFileSync(join(m[1], 'cam0', 'sensor.yaml'), 'utf8');
