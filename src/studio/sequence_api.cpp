@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 #include "render/lens.h"
@@ -17,6 +18,16 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+/// LensSettings' messages with the request's keys: "--aperture" -> "aperture_m", ...
+std::string lensKey(std::string text) {
+  static const std::pair<const char*, const char*> keys[] = {
+      {"--aperture", "aperture_m"}, {"--focus", "focus_m"}, {"--fisheye-fov", "fisheye_fov_deg"}};
+  for (const auto& [flag, key] : keys)
+    for (size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at))
+      text.replace(at, std::strlen(flag), key);
+  return flagToKey(text);
+}
 
 /// The first studio_NNN with no folder under `parent`.
 std::string freeSequenceName(const fs::path& parent) {
@@ -72,7 +83,8 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
 SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
                                      const fs::path& out) {
   checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence", "lens", "stereo",
-                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config"});
+                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config",
+                         "aperture_m", "focus_m", "fisheye_fov_deg"});
   SequenceRequest r;
   r.design = parseDesignRequest(body);
   SequenceJob& job = r.job;
@@ -87,6 +99,18 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   // the camera and sensors, as generate's flags (their own checks run with the job's)
   job.lens.lens = text(body, "lens", "pinhole");
   const LensType lens = parseLensType(job.lens.lens, "", "lens");
+  // the thin lens's depth of field and the fisheye's field of view; LensSettings::type()
+  // refuses a setting the chosen lens does not use
+  job.lens.aperture_m = number(body, "aperture_m", 0.0);
+  job.lens.focus_set = body.contains("focus_m");
+  job.lens.focus_m = number(body, "focus_m", job.lens.focus_m);
+  job.lens.fisheye_fov_set = body.contains("fisheye_fov_deg");
+  job.lens.fisheye_fov_deg = number(body, "fisheye_fov_deg", job.lens.fisheye_fov_deg);
+  try {
+    job.lens.type();
+  } catch (const InputError& e) {
+    throw InputError(e.file(), lensKey(e.field()), lensKey(e.problem()));
+  }
   // a fisheye's and a panorama's focal length follows from the image size
   job.fx_set = job.fy_set = lens == LensType::Pinhole || lens == LensType::ThinLens;
   job.stereo = number(body, "stereo", 0.0);

@@ -6,7 +6,8 @@
 //   {"width": 16..4096 (320), "height": 16..4096 (240), "fx": pixels (0, 100000] (300;
 //    fy = fx, principal point at the centre; pinhole and thin lens only), "spp": 1..4096 (4),
 //    "sequence": a plain folder name (default: the first free studio_NNN),
-//    "lens": pinhole | thin_lens | fisheye | panorama, "stereo": baseline 0..10 m (0 = mono),
+//    "lens": pinhole | thin_lens | fisheye | panorama, "aperture_m", "focus_m" (thin lens),
+//    "fisheye_fov_deg" (fisheye), "stereo": baseline 0..10 m (0 = mono),
 //    "exposure_ms", "readout_ms" (rolling shutter): 0..1000, "imu_rate": 0 (none) or Hz (800),
 //    "passes": as generate --passes ("default"),
 //    "config": as generate --config ("original"; lighting:N, rearranged:N, comma lists)}

@@ -237,6 +237,12 @@ TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
   req["lens"] = "orthographic";
   expectError(post("/api/jobs/sequence", req), "lens");
   req = twoKeyframes();
+  req["aperture_m"] = 0.01;  // a pinhole has no aperture
+  expectError(post("/api/jobs/sequence", req), "aperture_m");
+  req["lens"] = "thin_lens";
+  req["fisheye_fov_deg"] = 190;
+  expectError(post("/api/jobs/sequence", req), "fisheye_fov_deg");
+  req = twoKeyframes();
   req["stereo"] = -0.1;
   expectError(post("/api/jobs/sequence", req), "stereo");
   req = twoKeyframes();

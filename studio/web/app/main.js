@@ -131,6 +131,10 @@ async function generate() {
     height: num('height'), spp: num('spp'), lens: $('lens').value, stereo: num('stereo'),
     exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate'),
     config: $('config').value };
+  // the lens's own settings, only for the lens that uses them (the server refuses the others)
+  if ($('lens').value === 'thin_lens') Object.assign(request, { aperture_m: num('aperture'),
+    focus_m: num('focus') });
+  if ($('lens').value === 'fisheye') request.fisheye_fov_deg = num('fisheye-fov');
   try {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
