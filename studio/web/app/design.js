@@ -57,6 +57,19 @@ export class Design {
     this.changed();
   }
 
+  /// Moves keyframe i to (x, y) (its height kept; it keeps looking the same way) and/or aims it
+  /// at (lx, ly) (at its own height).
+  move(i, xy, look_xy) {
+    const k = this.keyframes[i];
+    if (xy) {
+      const dx = round(xy[0]) - k.position[0], dy = round(xy[1]) - k.position[1];
+      k.position = [k.position[0] + dx, k.position[1] + dy, k.position[2]].map((v) => round(v));
+      k.look_at = [k.look_at[0] + dx, k.look_at[1] + dy, k.look_at[2]].map((v) => round(v));
+    }
+    if (look_xy) k.look_at = [round(look_xy[0]), round(look_xy[1]), k.position[2]];
+    this.changed();
+  }
+
   remove(i) {
     this.keyframes.splice(i, 1);
     this.changed();

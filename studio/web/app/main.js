@@ -38,7 +38,8 @@ const design = new Design({
 const frame = new FramePreview({ slider: $('frame-slider'), pass: $('frame-pass'),
   img: $('frame-img'), info: $('frame-info'),
   camera: () => ({ fx: num('fx'), width: num('width'), height: num('height'), spp: num('spp') }) });
-const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look));
+const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look),
+  (i, xy, look) => design.move(i, xy, look));
 
 let imuVersion = 0;
 /// The IMU plot for path result r (a newer path wins over an older request).

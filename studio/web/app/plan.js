@@ -7,10 +7,13 @@ const kColours = { o: [221, 221, 221], '#': [51, 51, 51], f: [201, 165, 122],
   b: [255, 224, 138], '.': [255, 255, 255] };
 
 export class PlanView {
-  /// onPlace(position_xy, look_xy or null) is called for each click or drag.
-  constructor(canvas, onPlace) {
+  /// onPlace(position_xy, look_xy or null) is called for each click or drag on free ground;
+  /// onMove(index, position_xy or null, look_xy or null) when a keyframe's marker is dragged
+  /// (moved; with Shift held, aimed at where the drag ends).
+  constructor(canvas, onPlace, onMove = () => {}) {
     this.canvas = canvas;
     this.onPlace = onPlace;
+    this.onMove = onMove;
     this.keyframes = [];
     this.free = [];
     this.poses = [];
@@ -78,10 +81,22 @@ export class PlanView {
     return this.transform().toWorld(e.clientX - r.left, e.clientY - r.top);
   }
 
+  /// The keyframe whose marker is under canvas point (u, v), or -1.
+  markerAt(u, v) {
+    const t = this.transform();
+    for (let i = this.keyframes.length - 1; i >= 0; i--) {
+      const [ku, kv] = t.toCanvas(this.keyframes[i].position[0], this.keyframes[i].position[1]);
+      if (Math.hypot(ku - u, kv - v) <= 8) return i;
+    }
+    return -1;
+  }
+
   down(e) {
     if (!this.plan || e.button !== 0) return;
     this.canvas.setPointerCapture(e.pointerId);
-    this.drag = { from: this.eventWorld(e), to: null, px: [e.clientX, e.clientY] };
+    const r = this.canvas.getBoundingClientRect();
+    this.drag = { from: this.eventWorld(e), to: null, px: [e.clientX, e.clientY],
+      marker: this.markerAt(e.clientX - r.left, e.clientY - r.top), aim: e.shiftKey };
   }
 
   move(e) {
@@ -93,9 +108,11 @@ export class PlanView {
 
   up(e) {
     if (!this.drag) return;
-    const { from, to } = this.drag;
+    const { from, to, marker, aim } = this.drag;
     this.drag = null;
-    this.onPlace(from, to);
+    if (marker < 0) return this.onPlace(from, to);
+    if (to) this.onMove(marker, aim ? null : to, aim ? to : null);
+    else this.draw();  // a click on a marker changes nothing
   }
 
   draw() {
@@ -125,8 +142,14 @@ export class PlanView {
     this.drawPath(ctx, t);
     this.keyframes.forEach((k, i) => this.drawKeyframe(ctx, t, k.position, k.look_at, i,
       this.free[i] !== false));
-    if (this.drag && this.drag.to)
-      this.drawKeyframe(ctx, t, this.drag.from, this.drag.to, this.keyframes.length, true);
+    const d = this.drag;
+    if (d && d.to && d.marker < 0)
+      this.drawKeyframe(ctx, t, d.from, d.to, this.keyframes.length, true);
+    if (d && d.to && d.marker >= 0) {  // where the marker goes, or where it will look
+      const k = this.keyframes[d.marker];
+      if (d.aim) this.drawKeyframe(ctx, t, k.position, d.to, d.marker, true);
+      else this.drawKeyframe(ctx, t, d.to, k.look_at, d.marker, true);
+    }
   }
 
   drawPath(ctx, t) {

@@ -134,6 +134,24 @@ try {
     `the dragged keyframe looks towards the first (${JSON.stringify(dragged)})`);
   check(await page.getAttribute('#path-info', 'data-state') === 'ready',
     `path: ${await page.textContent('#path-info')}`);
+  // dragging keyframe 3's marker 0.3 m along x moves it and where it looks; back again
+  const k3 = await page.evaluate(() => JSON.parse(JSON.stringify(window.studio.design.keyframes[2])));
+  const dragMarker = async (from, to) => {
+    const [fx, fy] = await toPage(from);
+    const [tx, ty] = await toPage(to);
+    await pathReady(async () => {
+      await page.mouse.move(fx, fy);
+      await page.mouse.down();
+      await page.mouse.move(tx, ty, { steps: 4 });
+      await page.mouse.up();
+    });
+  };
+  await dragMarker(k3.position, [k3.position[0] + 0.3, k3.position[1]]);
+  const moved3 = await page.evaluate(() => window.studio.design.keyframes[2]);
+  check(Math.abs(moved3.position[0] - k3.position[0] - 0.3) < 0.03 &&
+    Math.abs(moved3.look_at[0] - k3.look_at[0] - (moved3.position[0] - k3.position[0])) < 1e-6,
+  `a dragged marker moves its keyframe (${JSON.stringify(k3.position)} -> ${JSON.stringify(moved3.position)})`);
+  await dragMarker(moved3.position, k3.position);
   await page.screenshot({ path: join(shots, 'studio_2_keyframes.png') });
 
   step('a keyframe inside furniture');
