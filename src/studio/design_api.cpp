@@ -4,10 +4,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "core/error.h"
-#include "studio/json_fields.h"
 #include "sensors/imu.h"
+#include "studio/json_fields.h"
 #include "trajectory/spectrum.h"
 
 namespace inet::studio {
@@ -182,8 +183,7 @@ json runImuRequest(const json& body) {
     throw InputError("", "noise", "unknown IMU noise '" + noise + "' (none, euroc)");
   opt.noise = noise == "euroc" ? ImuNoise::euroc() : ImuNoise::none();
   Trajectory path = designTrajectory(req);
-  if (path.size() < 2)
-    throw InputError("", "keyframes", "an IMU needs a path of at least 2 poses");
+  if (path.size() < 2) throw InputError("", "keyframes", "an IMU needs a path of at least 2 poses");
   const TimeNs t0 = path.poses.front().t_ns;
   for (TimedPose& p : path.poses) p.t_ns -= t0;
   const ImuSequence imu = simulateImu(path, opt);
@@ -217,29 +217,16 @@ DesignExport exportDesign(const DesignRequest& req, const std::string& format) {
   } catch (const InputError& e) {
     throw InputError("", "format", e.problem());
   }
-  switch (f) {
-    case TrajectoryFormat::Tum:
-      out.file_name = "groundtruth.txt";
-      break;
-    case TrajectoryFormat::Euroc:
-      out.file_name = "data.csv";
-      break;
-    case TrajectoryFormat::Icl:
-      out.file_name = "trajectory.gt.freiburg";
-      break;
-    case TrajectoryFormat::SlamBench:
-      out.file_name = "groundtruth_slambench.txt";
-      break;
-    case TrajectoryFormat::SceneNet:
-      out.file_name = "trajectory.log";
-      break;
-    case TrajectoryFormat::SceneNetV1:
-      out.file_name = "trajectory_random_poses_SE3_3x4.txt";
-      break;
-    case TrajectoryFormat::Kitti:
-      out.file_name = "poses.txt";
-      break;
-  }
+  // the names the datasets give these files
+  static const std::map<TrajectoryFormat, const char*> names = {
+      {TrajectoryFormat::Tum, "groundtruth.txt"},
+      {TrajectoryFormat::Euroc, "data.csv"},
+      {TrajectoryFormat::Icl, "trajectory.gt.freiburg"},
+      {TrajectoryFormat::SlamBench, "groundtruth_slambench.txt"},
+      {TrajectoryFormat::SceneNet, "trajectory.log"},
+      {TrajectoryFormat::SceneNetV1, "trajectory_random_poses_SE3_3x4.txt"},
+      {TrajectoryFormat::Kitti, "poses.txt"}};
+  out.file_name = names.at(f);
   out.content_type = f == TrajectoryFormat::Euroc ? "text/csv" : "text/plain";
   return out;
 }

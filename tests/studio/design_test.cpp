@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -218,36 +219,26 @@ TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
   req = twoKeyframes();
   req["keyframes"][0]["roll"] = 1;
   expectError(post("/api/design/path", req), "keyframes[0].roll");
+  // one bad key at a time: route, key, value
+  const std::vector<std::tuple<std::string, std::string, json>> bad = {
+      {"/api/design/path", "fps", 0},
+      {"/api/design/path", "colour", "red"},
+      {"/api/design/export", "format", "bvh"},
+      {"/api/jobs/sequence", "sequence", "../up"},
+      {"/api/jobs/sequence", "width", 4},
+      {"/api/jobs/sequence", "lens", "orthographic"},
+      {"/api/jobs/sequence", "aperture_m", 0.01},  // a pinhole has no aperture
+      {"/api/jobs/sequence", "stereo", -0.1},
+      {"/api/jobs/sequence", "imu_rate", 0.5}};
+  for (const auto& [route, key, value] : bad) {
+    req = twoKeyframes();
+    req[key] = value;
+    expectError(post(route, req), key);
+  }
   req = twoKeyframes();
-  req["fps"] = 0;
-  expectError(post("/api/design/path", req), "fps");
-  req = twoKeyframes();
-  req["colour"] = "red";
-  expectError(post("/api/design/path", req), "colour");
-  req = twoKeyframes();
-  req["format"] = "bvh";
-  expectError(post("/api/design/export", req), "format");
-  req = twoKeyframes();
-  req["sequence"] = "../up";
-  expectError(post("/api/jobs/sequence", req), "sequence");
-  req = twoKeyframes();
-  req["width"] = 4;
-  expectError(post("/api/jobs/sequence", req), "width");
-  req = twoKeyframes();
-  req["lens"] = "orthographic";
-  expectError(post("/api/jobs/sequence", req), "lens");
-  req = twoKeyframes();
-  req["aperture_m"] = 0.01;  // a pinhole has no aperture
-  expectError(post("/api/jobs/sequence", req), "aperture_m");
   req["lens"] = "thin_lens";
   req["fisheye_fov_deg"] = 190;
   expectError(post("/api/jobs/sequence", req), "fisheye_fov_deg");
-  req = twoKeyframes();
-  req["stereo"] = -0.1;
-  expectError(post("/api/jobs/sequence", req), "stereo");
-  req = twoKeyframes();
-  req["imu_rate"] = 0.5;
-  expectError(post("/api/jobs/sequence", req), "imu_rate");
   auto c = clientOf(*server);
   auto r = c.Post("/api/design/path", "{\"keyframes\": [", "application/json");
   ASSERT_TRUE(r);
@@ -388,8 +379,14 @@ TEST_F(StudioDesignTest, SequenceJobConfigurations) {
   json req = twoKeyframes();
   req["keyframes"][1]["t"] = 0.2;
   req["fps"] = 5;  // 2 frames
-  req.update({{"width", 32}, {"height", 24}, {"fx", 30}, {"spp", 1}, {"imu_rate", 0},
-              {"passes", "rgb,depth"}, {"config", "original,lighting:1"}, {"sequence", "configs"}});
+  req.update({{"width", 32},
+              {"height", 24},
+              {"fx", 30},
+              {"spp", 1},
+              {"imu_rate", 0},
+              {"passes", "rgb,depth"},
+              {"config", "original,lighting:1"},
+              {"sequence", "configs"}});
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();

@@ -3,6 +3,18 @@
 // (1.5 m/s, 120 deg/s) as dashed lines. Each curve has its own scale, written at its axis.
 const kSpeedLimit = 1.5, kTurnLimit = 120;
 
+/// Sizes the canvas for the device's pixels and clears it; the 2D context in CSS pixels.
+function prepare(canvas) {
+  const dpr = window.devicePixelRatio || 1;
+  canvas.width = Math.round(canvas.clientWidth * dpr);
+  canvas.height = Math.round(canvas.clientHeight * dpr);
+  const ctx = canvas.getContext('2d');
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.clearRect(0, 0, canvas.clientWidth, canvas.clientHeight);
+  ctx.font = '10px system-ui, sans-serif';
+  return ctx;
+}
+
 /// [{t_s, speed, turn}] between consecutive poses.
 export function motion(poses) {
   const out = [];
@@ -18,13 +30,8 @@ export function motion(poses) {
 }
 
 export function drawMotion(canvas, poses) {
-  const dpr = window.devicePixelRatio || 1;
+  const ctx = prepare(canvas);
   const w = canvas.clientWidth, h = canvas.clientHeight;
-  canvas.width = Math.round(w * dpr);
-  canvas.height = Math.round(h * dpr);
-  const ctx = canvas.getContext('2d');
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  ctx.clearRect(0, 0, w, h);
   const m = poses && poses.length > 1 ? motion(poses) : [];
   if (m.length === 0) return;
   const t_max = m[m.length - 1].t_s || 1;
@@ -33,7 +40,6 @@ export function drawMotion(canvas, poses) {
     { key: 'speed', limit: kSpeedLimit, colour: '#2060e0', unit: 'm/s', side: 'left' },
     { key: 'turn', limit: kTurnLimit, colour: '#208040', unit: '°/s', side: 'right' },
   ];
-  ctx.font = '10px system-ui, sans-serif';
   for (const s of series) {
     const top = Math.max(s.limit * 1.2, ...m.map((p) => p[s.key]));
     const y = (v) => h - pad - (h - 2 * pad) * v / top;
@@ -60,19 +66,13 @@ export function drawMotion(canvas, poses) {
 /// The IMU along the path (POST /api/design/imu: camera frame, gravity included): the
 /// accelerometer's x, y, z (m/s^2) above, the gyroscope's (rad/s) below, red, green, blue.
 export function drawImu(canvas, imu) {
-  const dpr = window.devicePixelRatio || 1;
+  const ctx = prepare(canvas);
   const w = canvas.clientWidth, h = canvas.clientHeight;
-  canvas.width = Math.round(w * dpr);
-  canvas.height = Math.round(h * dpr);
-  const ctx = canvas.getContext('2d');
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  ctx.clearRect(0, 0, w, h);
   const s = imu ? imu.samples : [];
   if (s.length < 2) return;
   const t_max = s[s.length - 1].t_ns * 1e-9 || 1;
   const x = (t) => 40 + (w - 50) * t / t_max;
   const colours = ['#d03030', '#20a040', '#3050d0'];
-  ctx.font = '10px system-ui, sans-serif';
   [['accel', 'm/s²'], ['gyro', 'rad/s']].forEach(([key, unit], pane) => {
     const top = pane * h / 2 + 3, height = h / 2 - 6;
     const span = Math.max(1e-6, ...s.map((m) => Math.max(...m[key].map(Math.abs))));
