@@ -192,9 +192,16 @@ void registerGenerate(CLI::App& app) {
                   "last N frames that saw it, reprojected exactly through the ground truth (depth, "
                   "classes, object motion); speculars, lights in view, edges and newly seen points "
                   "keep their own frame's samples; before the denoiser (docs/denoise.md). Default "
-                  "8, or 1 (off) with --exposure-ms or --readout-ms, which it cannot follow; "
+                  "16, or 1 (off) with --exposure-ms or --readout-ms, which it cannot follow; "
                   "1 = off")
       ->each([a](const std::string&) { a->temporal_set = true; });
+  cmd->add_option("--history-boost", a->history_boost,
+                  "with temporal reuse: render points no earlier frame of the window saw (the "
+                  "first frame, disocclusions, the image border) with up to N times --spp, N - k "
+                  "times where k earlier frames saw them (default 4; 1 = the same spp everywhere)");
+  cmd->add_option("--history-boost-edges", a->history_boost_edges,
+                  "with temporal reuse: times --spp on class and depth edges, which keep their "
+                  "own samples (default 2)");
   cmd->add_flag("--allow-dark", a->allow_dark,
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "

@@ -179,6 +179,10 @@ void validateArgs(const SequenceJob& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
+  if (a.history_boost < 1 || a.history_boost > 16)
+    throw InputError("", "--history-boost", "must be in 1..16 (1 = off)");
+  if (a.history_boost_edges < 1 || a.history_boost_edges > 16)
+    throw InputError("", "--history-boost-edges", "must be in 1..16 (1 = off)");
   if (a.temporal_set && a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
     throw InputError("", "--temporal",
                      "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
@@ -263,11 +267,19 @@ CameraExposure exposureAt(const CameraPath& cam, size_t k, const Shutter& shutte
   return ex;
 }
 
-/// The temporal reuse window in frames: --temporal, else 8, or 1 (off) with motion blur or a
+/// The temporal reuse window in frames: --temporal, else 16, or 1 (off) with motion blur or a
 /// rolling shutter, which temporal reuse cannot follow.
 int temporalWindow(const SequenceJob& a) {
   if (a.temporal_set) return a.temporal;
   return a.exposure_ms > 0 || a.readout_ms > 0 ? 1 : a.temporal;
+}
+
+TemporalReuseOptions reuseOptions(const SequenceJob& a) {
+  TemporalReuseOptions t;
+  t.window = temporalWindow(a);
+  t.boost = a.history_boost;
+  t.boost_edges = a.history_boost_edges;
+  return t;
 }
 
 nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const RenderOptions& opt,
@@ -307,11 +319,8 @@ nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const Render
   if (a.save_denoiser_inputs)
     m["render"]["denoiser_inputs"] =
         "denoise_in/<t>.exr: what the learned denoiser reads, per frame (render/neural_denoise.h)";
-  if (temporalWindow(a) > 1) {
-    TemporalReuseOptions t;
-    t.window = temporalWindow(a);
-    m["render"]["temporal_reuse"] = t.describe() + " (sensors/temporal_reuse.h)";
-  }
+  if (temporalWindow(a) > 1)
+    m["render"]["temporal_reuse"] = reuseOptions(a).describe() + " (sensors/temporal_reuse.h)";
   m["seed"] = opt.seed;
   m["shutter"] = {{"exposure_ms", a.exposure_ms},
                   {"readout_ms", a.readout_ms},
@@ -664,8 +673,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   const int window = temporalWindow(a);
   const bool temporal = window > 1 && has(passes, Pass::Rgb);
   std::optional<TemporalReuse> reuse, reuse1;
-  TemporalReuseOptions reuse_opt;
-  reuse_opt.window = window;
+  const TemporalReuseOptions reuse_opt = reuseOptions(a);
   if (temporal) {
     reuse.emplace(scene, lens, reuse_opt);
     if (a.stereo > 0) reuse1.emplace(scene, lens, reuse_opt);
@@ -681,12 +689,33 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     for (auto& [dt, pose] : ex.knots) pose = pose * T_rig;
     return ex;
   };
-  // one camera's frame k rendered with `o` into f and passed through its reuse window r
+  // The ground truth temporal reuse plans a frame's samples from (its depth, label, instance)
+  const bool boosted = reuse_opt.boost > 1 || reuse_opt.boost_edges > 1;
+  RenderOptions geometry_only;
+  geometry_only.passes = passMask(Pass::DepthZ, Pass::DepthRay, Pass::Label, Pass::Instance);
+  Frame geometry;
+  // one camera's frame k rendered with `o` into f and passed through its reuse window r, its
+  // samples planned by r where the history is short
   auto renderReused = [&](size_t k, const Pose& T_rig, uint32_t idx, const RenderOptions& o,
                           TemporalReuse& r, Frame& f) {
     const CameraExposure ex = exposureOf(k, T_rig);
-    renderer.render(lens, ex, o, idx, f, &layers);
-    r.add(f, layers, ex.T_world_camera_open, static_cast<double>(ex.scene_time_open_ns) * 1e-9);
+    const double scene_time_s = static_cast<double>(ex.scene_time_open_ns) * 1e-9;
+    if (boosted) {
+      renderer.render(lens, ex, geometry_only, idx, geometry);
+      RenderOptions planned = o;
+      planned.spp_multiplier = &r.plan(geometry, ex.T_world_camera_open, scene_time_s);
+      renderer.render(lens, ex, planned, idx, f, &layers);
+    } else {
+      renderer.render(lens, ex, o, idx, f, &layers);
+    }
+    r.add(f, layers, ex.T_world_camera_open, scene_time_s);
+  };
+  // one camera's frame k's geometry only, remembered by r (what later frames' plans count)
+  auto rememberGeometry = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse& r) {
+    const CameraExposure ex = exposureOf(k, T_rig);
+    renderer.render(lens, ex, geometry_only, idx, geometry);
+    r.addGeometry(geometry, ex.T_world_camera_open,
+                  static_cast<double>(ex.scene_time_open_ns) * 1e-9);
   };
   // renders one camera's frame k into f (colour filtered as asked: reuse, then the denoiser)
   // the learned denoiser and the training dump need the colour's layers even without reuse
@@ -720,7 +749,16 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     if (reuse1) reuse1->clear();
     RenderOptions colour = opt;
     colour.passes = bit(Pass::Rgb);
-    for (size_t j = k - std::min<size_t>(k, static_cast<size_t>(window - 1)); j < k; ++j) {
+    const size_t first_colour = k - std::min<size_t>(k, static_cast<size_t>(window - 1));
+    // the samples of those frames were planned from the geometry of the frames before them
+    if (boosted)
+      for (size_t j = first_colour - std::min<size_t>(first_colour, static_cast<size_t>(window - 1));
+           j < first_colour; ++j) {
+        const auto idx = static_cast<uint32_t>(j);
+        rememberGeometry(j, Pose{}, idx, *reuse);
+        if (reuse1) rememberGeometry(j, T_cam0_cam1, idx | 0x80000000u, *reuse1);
+      }
+    for (size_t j = first_colour; j < k; ++j) {
       const auto idx = static_cast<uint32_t>(j);
       renderReused(j, Pose{}, idx, colour, *reuse, warm);
       if (reuse1) renderReused(j, T_cam0_cam1, idx | 0x80000000u, colour, *reuse1, warm);

@@ -56,8 +56,12 @@ struct SequenceJob {
   bool sun_photons = true;
   std::string denoiser = "atrous";    ///< atrous or learned (render/neural_denoise.h)
   bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
-  int temporal = 8;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
+  int temporal = 16;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
   bool temporal_set = false;
+  /// Temporal reuse's samples multiplier where no earlier frame saw a point, and on edges
+  /// (TemporalReuseOptions::boost, boost_edges); 1 = the same spp everywhere.
+  int history_boost = 4;
+  int history_boost_edges = 2;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
   LensSettings lens;

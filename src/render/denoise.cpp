@@ -348,23 +348,25 @@ INET_TAP_CLONES void addTap(const TapContext& c, int y, int dx, int dy, float hw
   }
 }
 
-/// One à-trous level with tap spacing `step`: in -> out.
+/// One à-trous level with tap spacing `step`: in -> out. Without `colour_stop` the weights come
+/// from the guides alone (normal, depth plane, albedo): a linear filter of `in`.
 void atrousLevel(const Guide& g, const Signal& in, Signal& out, int step,
-                 const DenoiseOptions& opt) {
-  std::vector<float> scale = colourScale(g, in, opt.sigma_color);
+                 const DenoiseOptions& opt, bool colour_stop = true) {
+  std::vector<float> scale =
+      colour_stop ? colourScale(g, in, opt.sigma_color) : std::vector<float>(g.size(), 0.f);
   // The first level stops edges on a 3x3 Gaussian of the luminance (over valid pixels), with
   // the colour scale of that blur's noise (its variance is 36/256 of a pixel's). On the raw
   // luminance, a dark noisy centre rejected its brighter neighbours more than a bright one its
   // darker ones (indoor noise is skewed: most samples low, a few high), so the filter leaned
   // toward the median: walls of a default sequence frame came out 1.7 % dark.
   std::vector<float> prefiltered;
-  if (step == 1) {
+  if (step == 1 && colour_stop) {
     prefiltered = gaussian3x3(g, in.lum);
     for (float& v : scale) v *= 16.f / 6.f;  // 1 / sqrt(36 / 256)
   }
   TapContext ctx{g,
                  in,
-                 step == 1 ? prefiltered.data() : in.lum.data(),
+                 prefiltered.empty() ? in.lum.data() : prefiltered.data(),
                  scale,
                  opt.sigma_normal,
                  1.f / (2.f * opt.sigma_albedo * opt.sigma_albedo)};
@@ -407,6 +409,7 @@ std::string DenoiseOptions::describe() const {
   s << "iterations=" << iterations << " sigma_normal=" << sigma_normal
     << " sigma_depth=" << sigma_depth << " sigma_albedo=" << sigma_albedo
     << " sigma_color=" << sigma_color << " albedo_epsilon=" << albedo_epsilon;
+  if (mean_levels > 0) s << " mean_levels=" << mean_levels;
   return s.str();
 }
 
@@ -421,6 +424,9 @@ void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
   for (const auto& [name, v] : sigmas)
     if (!(std::isfinite(v) && v > 0.f))
       throw InputError(where, name, "must be finite and > 0, got " + std::to_string(v));
+  if (o.mean_levels < 0 || o.mean_levels > 10)
+    throw InputError(where, "denoise.mean_levels",
+                     "must be in 0..10, got " + std::to_string(o.mean_levels));
   if (!(o.albedo_epsilon > 0.f && o.albedo_epsilon <= 1.f))
     throw InputError(where, "denoise.albedo_epsilon",
                      "must be in (0, 1], got " + std::to_string(o.albedo_epsilon));
@@ -464,6 +470,39 @@ void rejectFireflies(const Guide& g, Signal& a) {
   });
 }
 
+/// `levels` à-trous levels of s without the colour stop: the local mean of s over the pixels
+/// of the same surface, 1 + 4 (2^levels - 1) px wide.
+Signal surfaceMean(const Guide& g, Signal s, int levels, const DenoiseOptions& opt) {
+  Signal t(g.size());
+  for (int it = 0; it < levels; ++it) {
+    atrousLevel(g, s, t, 1 << it, opt, false);
+    std::swap(s, t);
+  }
+  return s;
+}
+
+/// Keeps the input's light where the filter lost or gained some (DenoiseOptions::mean_levels):
+/// `out` is scaled per pixel by lum(M(in)) / lum(M(out)), M the surface mean of mean_levels
+/// levels, clamped to [1/2, 2] (the scale of a pixel whose means are not positive is 1).
+void keepSurfaceMean(const Guide& g, const Signal& in_mean, Signal& out,
+                     const DenoiseOptions& opt) {
+  const Signal out_mean = surfaceMean(g, out, opt.mean_levels, opt);
+  forEachRow(g.height, [&](int y) {
+    for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width;
+         ++i) {
+      if (g.valid[i] == 0.f) continue;
+      const float want = in_mean.lum[i], have = out_mean.lum[i];
+      if (!(want > 0.f && have > 0.f)) continue;
+      const float k = std::clamp(want / have, 0.5f, 2.f);
+      out.r[i] *= k;
+      out.g[i] *= k;
+      out.b[i] *= k;
+      out.lum[i] *= k;
+      out.var[i] *= k * k;
+    }
+  });
+}
+
 std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
                                   const ImageF& depth, const ImageF* variance,
                                   const DenoiseOptions& opt, const std::vector<int>& levels) {
@@ -485,6 +524,8 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
   Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
   if (!variance) estimateVariance(g, a, opt);
   rejectFireflies(g, a);
+  // the input's surface mean, when the output keeps it
+  const Signal in_mean = opt.mean_levels > 0 ? surfaceMean(g, a, opt.mean_levels, opt) : Signal(0);
   Signal b(g.size());
   const float eps = opt.albedo_epsilon;
   auto remodulated = [&](const Signal& s) {
@@ -504,8 +545,16 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
   for (int it = 0; it < levels.back(); ++it) {
     atrousLevel(g, a, b, 1 << it, opt);
     std::swap(a, b);
-    for (int l : levels)
-      if (l == it + 1) outs.push_back(remodulated(a));
+    for (int l : levels) {
+      if (l != it + 1) continue;
+      if (opt.mean_levels > 0) {
+        Signal kept = a;
+        keepSurfaceMean(g, in_mean, kept, opt);
+        outs.push_back(remodulated(kept));
+      } else {
+        outs.push_back(remodulated(a));
+      }
+    }
   }
   return outs;
 }

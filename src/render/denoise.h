@@ -29,6 +29,9 @@
 //     Inverse z-depth is affine in pixel coordinates on any plane seen by a pinhole camera, so
 //     e_z is 0 on planes at any slant and measures the jump at occlusion boundaries. The
 //     gradient is the smaller one-sided difference, so it never straddles an occlusion edge.
+//  3b. (mean_levels > 0) Keep the light: E' is scaled per pixel by lum(M(E)) / lum(M(E')),
+//     clamped to [1/2, 2], where M is mean_levels levels of step 3 with e_l = 0 (a linear filter
+//     of the surface), since the colour stop loses light where the noise is skewed.
 //  4. Remodulate; pixels without a surface (depth <= 0, zero normal) or with non-finite colour
 //     are never used as neighbours and are copied through unchanged.
 //
@@ -52,6 +55,12 @@ struct DenoiseOptions {
   float sigma_albedo = 0.1f;     ///< albedo difference (linear reflectance, L2) at weight e^-1/2
   float sigma_color = 4.f;       ///< luminance difference, in noise standard deviations
   float albedo_epsilon = 0.01f;  ///< demodulation floor: rgb / max(albedo, albedo_epsilon)
+  /// 0, or keep the light of the input: the output is scaled per pixel so that its surface mean
+  /// (this many à-trous levels with the guides' stops only, no colour stop: a linear filter,
+  /// 1 + 4 (2^N - 1) px wide) equals the input's. The colour stop is biased where the noise is
+  /// skewed (indoors most samples are dark and a few bright; a dark pixel rejects its bright
+  /// neighbours more than the reverse), and walls of a default sequence came out 3-6 % dark.
+  int mean_levels = 0;
 
   /// "iterations=5 sigma_normal=128 ..." for logs and dataset provenance.
   std::string describe() const;

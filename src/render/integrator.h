@@ -23,6 +23,11 @@ class EmbreeScene;
 /// Everything that controls how a frame is rendered. Part of a dataset's provenance.
 struct RenderOptions {
   int spp = 16;         ///< samples per pixel for the RGB pass
+  /// Per-pixel multiplier of spp (values 0 and 1 both mean 1), or nullptr: pixel (x, y) takes
+  /// spp x multiplier samples, drawn exactly as a render at that spp would draw them. Not owned;
+  /// the image must have the camera's size. Temporal reuse (sensors/temporal_reuse.h) gives
+  /// the points a sequence has not seen before more samples than those it has.
+  const ImageU8* spp_multiplier = nullptr;
   int max_bounces = 8;  ///< scattering events per path (1 = direct light only)
   uint64_t seed = 0;    ///< global seed of the counter-based RNG
   PassMask passes = kRenderPasses;
@@ -39,10 +44,13 @@ struct RenderOptions {
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7
   /// and sigma_color 1-8 at 32 spp: 3 and 2 gave the lowest RMSE, 0.00465 vs 0.00565 for the
   /// filter's generic defaults).
+  /// mean_levels 5: the output keeps the input's light over 125-px surface means; default
+  /// sequence walls and floors of an apartment were 4.6-5.7 % dark without it (denoise.h).
   DenoiseOptions denoise_options = [] {
     DenoiseOptions d;
     d.iterations = 3;
     d.sigma_color = 2.f;
+    d.mean_levels = 5;
     return d;
   }();
 };

@@ -43,6 +43,11 @@ float powerHeuristic(float a, float b) {
   return a * a / (a * a + b * b);
 }
 
+/// Pixel (x, y)'s samples: RenderOptions::spp, times its spp_multiplier where one is given.
+int pixelSpp(const RenderOptions& o, int x, int y) {
+  return o.spp_multiplier ? o.spp * std::max<int>(1, o.spp_multiplier->at(x, y)) : o.spp;
+}
+
 /// What IntegratorOutputs splits off at a path's first surface.
 struct FirstSurface {
   Vec3f diffuse = Vec3f::Zero();  ///< light it reflects through its diffuse lobes
@@ -183,7 +188,6 @@ class PathTracer final : public Integrator {
   void render(const RenderContext& ctx, ImageF& rgb,
               const IntegratorOutputs& out) const override {
     const CameraIntrinsics& K = ctx.lens.K;
-    const int spp = ctx.options.spp;
     // angle one pixel subtends (fx, fy are pixels per radian for every lens model)
     const auto pixel_spread = static_cast<float>(1.0 / std::sqrt(K.fx * K.fy));
     // Camera rays go out in coherent 16-wide packets: for each sample index, the rays of a 4x4
@@ -213,7 +217,12 @@ class PathTracer final : public Integrator {
       if (ctx.stats) ctx.stats->rays += tile_rays;
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), tile);
-    if (ctx.stats) ctx.stats->samples += static_cast<uint64_t>(K.width) * K.height * spp;
+    if (ctx.stats) {
+      uint64_t samples = 0;
+      for (int y = 0; y < K.height; ++y)
+        for (int x = 0; x < K.width; ++x) samples += static_cast<uint64_t>(pixelSpp(ctx.options, x, y));
+      ctx.stats->samples += samples;
+    }
   }
 
  private:
@@ -403,7 +412,6 @@ class PathTracer final : public Integrator {
                    RTCIntersectContext& ictx, float pixel_spread, const LightCaching& caching,
                    ImageF& rgb, const IntegratorOutputs& out, uint64_t& rays) const {
     const CameraIntrinsics& K = ctx.lens.K;
-    const int spp = ctx.options.spp;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     // the first surface's diffuse light and albedo, only when a layer asks for them
     const bool split =
@@ -422,9 +430,11 @@ class PathTracer final : public Integrator {
       Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
       Vec3f sum_d = Vec3f::Zero(), sum2_d = Vec3f::Zero(), sum2_rest = Vec3f::Zero();
       Vec3f sum_albedo = Vec3f::Zero();
+      int spp = 0;  ///< this pixel's samples (RenderOptions::spp_multiplier)
       uint32_t hashes[PixelSampler::kMaxPairs];
     };
     Lane lanes[16];
+    int block_spp = 0;  // the most samples any pixel of the block takes
     for (int k = 0; k < 16; ++k) {
       Lane& l = lanes[k];
       l.x = x0 + (k & 3);
@@ -432,13 +442,15 @@ class PathTracer final : public Integrator {
       l.inside = l.x < x1 && l.y < y1;
       if (!l.inside) continue;
       l.pixel = static_cast<uint32_t>(l.y * K.width + l.x);
+      l.spp = pixelSpp(ctx.options, l.x, l.y);
+      block_spp = std::max(block_spp, l.spp);
       PixelSampler::pairHashes(ctx.options.seed, ctx.frame_index, l.pixel, l.hashes);
     }
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     std::optional<PixelSampler> smp[16];
     Ray ray[16];
-    for (int s = 0; s < spp; ++s) {
+    for (int s = 0; s < block_spp; ++s) {
       for (int k = 0; k < 16; ++k) {
         // an inactive lane (outside the block, or no ray: a fisheye's corners) still holds a
         // well-formed, empty ray (tfar < tnear): Debian's Embree is built with assertions on
@@ -455,9 +467,9 @@ class PathTracer final : public Integrator {
         rh.ray.id[k] = static_cast<unsigned>(k);
         rh.ray.flags[k] = 0;
         Lane& l = lanes[k];
-        if (!l.inside) continue;
+        if (!l.inside || s >= l.spp) continue;
         smp[k].emplace(ctx.options.seed, ctx.frame_index, l.pixel, static_cast<uint32_t>(s),
-                       static_cast<uint32_t>(spp), l.hashes);
+                       static_cast<uint32_t>(l.spp), l.hashes);
         Eigen::Vector2f j = smp[k]->get2D();
         Eigen::Vector2d lens_uv = thin_lens ? smp[k]->get2D().cast<double>() : kLensCentre;
         CameraRay cr;
@@ -525,13 +537,14 @@ class PathTracer final : public Integrator {
         }
       }
     }
-    const float n = static_cast<float>(spp);
-    // unbiased sample variance of the mean of a sum's samples, from their sum and sum of squares
-    auto varianceOfMean = [&](float sum, float sum2) {
-      return spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
-    };
     for (const Lane& l : lanes) {
       if (!l.inside) continue;
+      const auto n = static_cast<float>(l.spp);
+      // unbiased sample variance of the mean of a sum's samples, from their sum and sum of
+      // squares
+      auto varianceOfMean = [&](float sum, float sum2) {
+        return l.spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
+      };
       for (int c = 0; c < 3; ++c) {
         rgb.at(l.x, l.y, c) = l.sum[c] / n;
         if (out.emission) out.emission->at(l.x, l.y, c) = l.sum_le[c] / n;

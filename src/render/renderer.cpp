@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "render/embree_scene.h"
 #include "render/gt_passes.h"
 
@@ -51,6 +52,8 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
       image = ImageF(K.width, K.height, 3);
   };
   allocate(frame.rgb);
+  INET_CHECK(!options.spp_multiplier || (options.spp_multiplier->width == K.width &&
+                                         options.spp_multiplier->height == K.height));
   RenderContext ctx{*scene_, lens, T_world_camera, moving, options, frame_index, stats_};
   // too few samples for a variance of their own: the neighbourhood's (denoise.h)
   const bool few_samples = options.spp < kNeighbourhoodVarianceBelowSpp;

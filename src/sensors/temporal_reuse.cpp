@@ -45,14 +45,20 @@ ImageU8 interiorPixels(const ImageU8& label, const ImageU16* instance, const Ima
 void TemporalReuseOptions::validate(const std::string& where) const {
   if (window < 1 || window > 64)
     throw InputError(where, "--temporal", fmt::format("window {} is outside 1..64 frames", window));
+  if (boost < 1 || boost > 16)
+    throw InputError(where, "--history-boost", fmt::format("{} is outside 1..16", boost));
+  if (boost_edges < 1 || boost_edges > 16)
+    throw InputError(where, "temporal.boost_edges", fmt::format("{} is outside 1..16", boost_edges));
   if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
     throw InputError(where, "temporal.albedo_epsilon", "must be in (0, 1]");
   flow.validate(where);
 }
 
 std::string TemporalReuseOptions::describe() const {
-  return fmt::format("window={} albedo_epsilon={} occlusion_rel_tol={} occlusion_abs_tol_m={}",
-                     window, albedo_epsilon, flow.occlusion_rel_tol, flow.occlusion_abs_tol_m);
+  return fmt::format(
+      "window={} boost={} boost_edges={} albedo_epsilon={} occlusion_rel_tol={} "
+      "occlusion_abs_tol_m={}",
+      window, boost, boost_edges, albedo_epsilon, flow.occlusion_rel_tol, flow.occlusion_abs_tol_m);
 }
 
 TemporalReuse::TemporalReuse(const Scene& scene, const LensModel& lens,
@@ -63,66 +69,52 @@ TemporalReuse::TemporalReuse(const Scene& scene, const LensModel& lens,
   for (const Object& o : scene.objects) has_motion_ = has_motion_ || o.moving();
 }
 
-void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera,
-                        double scene_time_s, ImageU8* used) {
+const ImageF& TemporalReuse::depthOf(const Frame& f) const {
+  return options_.flow.depth_kind == DepthKind::ZDepth ? f.depth_z : f.depth_ray;
+}
+
+TemporalReuse::Reprojection TemporalReuse::reproject(const ImageF& depth, const Frame& f,
+                                                     const Pose& T_world_camera,
+                                                     double scene_time_s) const {
   const int W = lens_.K.width, H = lens_.K.height;
-  const ImageF& depth =
-      options_.flow.depth_kind == DepthKind::ZDepth ? frame.depth_z : frame.depth_ray;
-  INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.albedo.width == W &&
-                 depth.width == W && frame.label.width == W && frame.instance.width == W &&
-                 layers.diffuse.width == W && layers.diffuse_variance.width == W &&
-                 layers.rest_variance.width == W);
-  // (a frame rendered with layers, at the lens' size)
-  const float eps = options_.albedo_epsilon;
+  INET_CHECK(depth.width == W && depth.height == H && f.label.width == W &&
+             (!has_motion_ || f.instance.width == W));
   const size_t n_px = static_cast<size_t>(W) * H;
   // instances matter to the visibility test and the taps only where objects move (the motion
   // is per instance); otherwise the class and the depths decide (see interiorPixels)
   const ImageU16 no_instances;
-  const ImageU16& instance = has_motion_ ? frame.instance : no_instances;
-  Past self{T_world_camera,
-            scene_time_s,
-            depth,
-            instance,
-            frame.label,
-            ImageF(W, H, 3),
-            ImageF(W, H, 3),
-            interiorPixels(frame.label, has_motion_ ? &frame.instance : nullptr, depth)};
-  // this frame's demodulated diffuse light: what later frames will read
-  for (size_t i = 0; i < n_px * 3; ++i) {
-    const float a = std::max(layers.albedo.data[i], eps);
-    self.irradiance.data[i] = layers.diffuse.data[i] / a;
-    self.variance.data[i] = layers.diffuse_variance.data[i] / (a * a);
-  }
+  const ImageU16& instance = has_motion_ ? f.instance : no_instances;
+  Reprojection r;
+  r.T_world_camera = T_world_camera;
+  r.scene_time_s = scene_time_s;
+  r.self = Past{T_world_camera, scene_time_s, depth, instance, f.label, {}, {},
+                interiorPixels(f.label, has_motion_ ? &f.instance : nullptr, depth), {}};
+  const Past& self = r.self;
   // Where each interior pixel lands in each remembered frame: the (up to) 4 bilinear taps around
   // the landing point that are interior pixels of the pixel's own class (and instance, where
   // objects move; the flow's visibility rule has checked their depths), with weights summing to
   // 1; none where the point is not seen there.
-  struct Taps {
-    int32_t index[4];
-    float weight[4];
-    int count = 0;
-  };
-  std::vector<std::vector<Taps>> source(past_.size());
+  r.source.resize(past_.size());
   const FlowFrameView now{depth, instance, T_world_camera};
   const bool wrap_u = lens_.type == LensType::Panorama;
   for (size_t j = 0; j < past_.size(); ++j) {
     const Past& p = past_[j];
     const ObjectMotion motion =
         has_motion_ ? objectMotionBetween(scene_, scene_time_s, p.scene_time_s) : ObjectMotion{};
-    const FlowField f = forwardFlow(now, FlowFrameView{p.depth, p.instance, p.T_world_camera},
-                                    lens_, motion, options_.flow);
-    std::vector<Taps>& src = source[j];
+    const FlowField fl = forwardFlow(now, FlowFrameView{p.depth, p.instance, p.T_world_camera},
+                                     lens_, motion, options_.flow);
+    std::vector<Taps>& src = r.source[j];
     src.assign(n_px, Taps{});
     tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
       for (int y = rows.begin(); y < rows.end(); ++y)
         for (int x = 0; x < W; ++x) {
-          if (!f.valid.at(x, y) || f.occluded.at(x, y) || !self.interior.at(x, y)) continue;
+          if (!fl.valid.at(x, y) || fl.occluded.at(x, y) || !self.interior.at(x, y)) continue;
           // pixel centres at +0.5: the taps are the centres around the landing point
-          const double u = x + f.flow.at(x, y, 0), v = y + f.flow.at(x, y, 1);
+          const double u = x + fl.flow.at(x, y, 0), v = y + fl.flow.at(x, y, 1);
           const double u0 = std::floor(u), v0 = std::floor(v);
           const auto fu = static_cast<float>(u - u0), fv = static_cast<float>(v - v0);
-          const uint16_t inst = has_motion_ ? frame.instance.at(x, y) : 0;
-          const uint8_t cls = frame.label.at(x, y);
+          const uint16_t inst = has_motion_ ? f.instance.at(x, y) : 0;
+          const uint8_t cls = f.label.at(x, y);
           Taps& t = src[static_cast<size_t>(y) * W + x];
           float total = 0.f;
           for (int k = 0; k < 4; ++k) {
@@ -142,28 +134,99 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
         }
     });
   }
+  // the samples multiplier: more where fewer remembered frames will give reused light
+  r.multiplier = ImageU8(W, H, 1, 1);
+  for (size_t i = 0; i < n_px; ++i) {
+    if (!self.interior.data[i]) {
+      r.multiplier.data[i] = static_cast<uint8_t>(options_.boost_edges);
+      continue;
+    }
+    int seen = 0;
+    for (const std::vector<Taps>& src : r.source) seen += src[i].count > 0 ? 1 : 0;
+    r.multiplier.data[i] = static_cast<uint8_t>(std::max(1, options_.boost - seen));
+  }
+  return r;
+}
+
+const ImageU8& TemporalReuse::plan(const Frame& gt, const Pose& T_world_camera,
+                                   double scene_time_s) {
+  planned_ = std::make_unique<Reprojection>(
+      reproject(depthOf(gt), gt, T_world_camera, scene_time_s));
+  return planned_->multiplier;
+}
+
+void TemporalReuse::addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s) {
+  const ImageU16 no_instances;
+  remember(Past{T_world_camera, scene_time_s, depthOf(gt), has_motion_ ? gt.instance : no_instances,
+                gt.label, {}, {},
+                interiorPixels(gt.label, has_motion_ ? &gt.instance : nullptr, depthOf(gt)), {}});
+  planned_.reset();
+}
+
+void TemporalReuse::remember(Past&& p) {
+  past_.push_back(std::move(p));
+  while (static_cast<int>(past_.size()) > options_.window - 1) past_.pop_front();
+}
+
+void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera,
+                        double scene_time_s, ImageU8* used) {
+  const int W = lens_.K.width, H = lens_.K.height;
+  const ImageF& depth = depthOf(frame);
+  INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.albedo.width == W &&
+                 depth.width == W && frame.label.width == W && frame.instance.width == W &&
+                 layers.diffuse.width == W && layers.diffuse_variance.width == W &&
+                 layers.rest_variance.width == W);
+  // (a frame rendered with layers, at the lens' size)
+  const float eps = options_.albedo_epsilon;
+  const size_t n_px = static_cast<size_t>(W) * H;
+  // the reprojection plan() made for this frame (its ground truth is this frame's), else now;
+  // without a plan the frame was rendered at multiplier 1
+  std::unique_ptr<Reprojection> r = std::move(planned_);
+  if (!r || !(r->T_world_camera.t == T_world_camera.t) ||
+      !(r->T_world_camera.q.coeffs() == T_world_camera.q.coeffs()) ||
+      r->scene_time_s != scene_time_s) {
+    r = std::make_unique<Reprojection>(reproject(depth, frame, T_world_camera, scene_time_s));
+    r->multiplier = ImageU8();
+  }
+  Past self = std::move(r->self);
+  self.multiplier = std::move(r->multiplier);
+  self.irradiance = ImageF(W, H, 3);
+  self.variance = ImageF(W, H, 3);
+  // this frame's demodulated diffuse light: what later frames will read
+  for (size_t i = 0; i < n_px * 3; ++i) {
+    const float a = std::max(layers.albedo.data[i], eps);
+    self.irradiance.data[i] = layers.diffuse.data[i] / a;
+    self.variance.data[i] = layers.diffuse_variance.data[i] / (a * a);
+  }
+  auto samplesOf = [](const Past& p, size_t i) {  // the multiplier pixel i was rendered with
+    return p.multiplier.data.empty() ? 1.0 : std::max<double>(1.0, p.multiplier.data[i]);
+  };
+  const std::vector<std::vector<Taps>>& source = r->source;
   if (used) *used = ImageU8(W, H, 1, 1);
   ImageF& rgb = frame.rgb;
   tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < W; ++x) {
         const size_t i = static_cast<size_t>(y) * W + x;
-        // Each frame's estimate is weighted by the inverse of its variance factor: 1 for this
-        // frame's own pixel, sum w^2 (< 1) for an interpolation of a past frame's taps, taken as
-        // having the same per-pixel noise. The weights depend only on geometry, never on the
-        // samples, so the mean stays unbiased.
-        double sum[3], var[3], total = 1.0;
+        // Each frame's estimate is weighted by the inverse of its variance factor: 1 / m for
+        // this frame's own pixel (m its samples multiplier), sum w^2 / m for an interpolation of
+        // a past frame's taps, every sample taken as having the same noise. The weights depend
+        // only on geometry, never on the samples, so the mean stays unbiased.
+        const double own = samplesOf(self, i);
+        double sum[3], var[3], total = own;
         for (int c = 0; c < 3; ++c) {
-          sum[c] = self.irradiance.data[i * 3 + c];
-          var[c] = self.variance.data[i * 3 + c];
+          sum[c] = own * self.irradiance.data[i * 3 + c];
+          var[c] = own * own * self.variance.data[i * 3 + c];
         }
         int n = 1;
         // newest first: a fixed order, so the sums do not depend on threads
         for (size_t j = past_.size(); j-- > 0;) {
           const Taps& t = source[j][i];
-          if (t.count == 0) continue;
+          if (t.count == 0 || past_[j].irradiance.data.empty()) continue;
           double s2 = 0.0;
-          for (int k = 0; k < t.count; ++k) s2 += static_cast<double>(t.weight[k]) * t.weight[k];
+          for (int k = 0; k < t.count; ++k)
+            s2 += static_cast<double>(t.weight[k]) * t.weight[k] /
+                  samplesOf(past_[j], static_cast<size_t>(t.index[k]));
           const double frame_w = 1.0 / s2;
           for (int c = 0; c < 3; ++c) {
             double value = 0.0, value_var = 0.0;
@@ -194,8 +257,7 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
         }
       }
   });
-  past_.push_back(std::move(self));
-  while (static_cast<int>(past_.size()) > options_.window - 1) past_.pop_front();
+  remember(std::move(self));
 }
 
 }  // namespace inet

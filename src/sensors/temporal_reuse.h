@@ -36,13 +36,27 @@
 // to window - 1 frames; the Plastic base's Fresnel factor changes by well under 1 % over the
 // angles a window covers.
 //
+// Samples where the history is short (`plan`, RenderOptions::spp_multiplier): a point frame k
+// sees for the first time (the first frame, a disocclusion, the image border) has only its own
+// samples, and was what the window could not reduce (13-15 % of an apartment frame's pixels).
+// plan() counts, before frame k is rendered, how many remembered frames will give each pixel
+// reused light (from frame k's ground truth: geometry only), and asks for
+// max(1, boost - count) times the samples there (boost_edges for pixels on a class or depth
+// edge, which never take reused light). The weights above then count samples: frame k's own
+// estimate weighs its multiplier m_k(x), a past frame's interpolation
+// 1 / sum_taps (w^2 / m_j(tap)), both still geometry only, so the mean stays unbiased.
+//
 // Determinism: the output of frame k depends only on frames k - window + 1 .. k, each rendered
-// from its own seed. A caller that starts at frame s > 0 (a resumed run, a frame range of a
-// larger job) first adds frames max(0, s - window + 1) .. s - 1 (render them, call add and
-// discard the result) and gets the same bytes as a run from frame 0.
+// from its own seed with a multiplier that depends on the geometry of the window - 1 frames
+// before it. A caller that starts at frame s > 0 (a resumed run, a frame range of a larger job)
+// first adds the geometry of frames max(0, s - 2 window + 2) .. s - window (addGeometry), then
+// frames max(0, s - window + 1) .. s - 1 (plan, render them, call add and discard the result)
+// and gets the same bytes as a run from frame 0.
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/pose.h"
@@ -56,7 +70,12 @@ namespace inet {
 struct Scene;
 
 struct TemporalReuseOptions {
-  int window = 8;                ///< frames per output, the current one included (1 = off)
+  int window = 16;               ///< frames per output, the current one included (1 = off)
+  /// Most samples multiplier plan() asks for (a point no remembered frame saw); 1 = every pixel
+  /// takes the frame's spp.
+  int boost = 4;
+  /// The multiplier of pixels on a class or depth edge (they keep their own samples).
+  int boost_edges = 2;
   float albedo_epsilon = 0.01f;  ///< demodulation floor, as the denoiser's
   FlowOptions flow;              ///< the visibility test's depth tolerances
 
@@ -83,8 +102,20 @@ class TemporalReuse {
   /// sequences).
   void add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera, double scene_time_s,
            ImageU8* used = nullptr);
+  /// Before the next frame is rendered: from its ground truth `gt` (the depth of the flow's
+  /// kind, label, and instance where objects move) at T_world_camera and scene_time_s, the
+  /// per-pixel samples multiplier to render it with (RenderOptions::spp_multiplier; see the top
+  /// of this file). The reprojection it computes is kept for the add() of the same pose and
+  /// time. Without plan(), add() takes every pixel as rendered at multiplier 1.
+  const ImageU8& plan(const Frame& gt, const Pose& T_world_camera, double scene_time_s);
+  /// Remembers a frame's geometry only (no colour): what plan() counts for the frames after it.
+  /// For a caller that starts late (see the top of this file).
+  void addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s);
   /// Forgets every earlier frame.
-  void clear() { past_.clear(); }
+  void clear() {
+    past_.clear();
+    planned_.reset();
+  }
   /// Frames remembered (at most window - 1).
   int remembered() const { return static_cast<int>(past_.size()); }
 
@@ -95,15 +126,38 @@ class TemporalReuse {
     ImageF depth;        ///< of the flow's DepthKind
     ImageU16 instance;   ///< empty unless objects move
     ImageU8 label;
-    ImageF irradiance;   ///< diffuse / max(albedo, eps), 3 channels
+    ImageF irradiance;   ///< diffuse / max(albedo, eps), 3 channels (empty: geometry only)
     ImageF variance;     ///< of the irradiance, 3 channels
     ImageU8 interior;    ///< 1 = the 3x3 neighbourhood is one surface (see the .cpp)
+    ImageU8 multiplier;  ///< the samples multiplier it was rendered with (empty: 1)
   };
+  /// Where pixel i lands in a remembered frame: the (up to) 4 bilinear taps around the landing
+  /// point that the reuse may read, weights summing to 1; count 0 where it is not seen there.
+  struct Taps {
+    int32_t index[4];
+    float weight[4];
+    int count = 0;
+  };
+  /// A frame's geometry and where its pixels land in each remembered frame (oldest first).
+  struct Reprojection {
+    Pose T_world_camera;
+    double scene_time_s = 0;
+    Past self;  ///< the frame's geometry (colour fields empty)
+    std::vector<std::vector<Taps>> source;
+    ImageU8 multiplier;  ///< plan()'s answer
+  };
+  Reprojection reproject(const ImageF& depth, const Frame& f, const Pose& T_world_camera,
+                         double scene_time_s) const;
+  /// The depth of the flow's kind in f.
+  const ImageF& depthOf(const Frame& f) const;
+  void remember(Past&& p);
+
   const Scene& scene_;
   LensModel lens_;
   TemporalReuseOptions options_;
   bool has_motion_ = false;  ///< some object of the scene moves
   std::deque<Past> past_;  ///< oldest first
+  std::unique_ptr<Reprojection> planned_;  ///< plan()'s, for the next add()
 };
 
 }  // namespace inet

@@ -471,7 +471,9 @@ TEST(Generate, AutoExposureMetersOneMultiplierPerSequenceToMiddleGrey) {
 // thread count.
 TEST(Generate, LearnedDenoiserAndItsTrainingDump) {
   TempDir dir("gen_learned");
-  const std::string common = kSmall + "--hdr --frames 2 --spp 4 --exposure fixed --passes rgb,depth ";
+  // (the same samples everywhere: the network was trained on frames without planned samples)
+  const std::string common = kSmall + "--hdr --frames 2 --spp 4 --exposure fixed --passes rgb,depth " +
+                             "--history-boost 1 --history-boost-edges 1 ";
   RunResult raw = runInterinet(common + "--no-denoise --save-denoiser-inputs --out " +
                                (dir / "raw").string());
   RunResult l1 = runInterinet(common + "--denoiser learned --threads 1 --out " + (dir / "l1").string());
@@ -574,16 +576,18 @@ TEST(Generate, TemporalReuseResumesToTheSameBytes) {
   RunResult whole = runInterinet(args + (dir / "whole").string());
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   const auto full = readTree(dir / "whole");
-  // a run killed after 3 frames: the first 3 frames' files only
+  // a run killed after 4 frames: the first 4 frames' files only. The rerun renders frames 2
+  // and 3 again for the window, after the geometry of frames 0 and 1, which planned their
+  // samples (TemporalReuse::plan)
   const fs::path part = dir / "part";
   fs::create_directories(part);
   fs::copy(dir / "whole", part, fs::copy_options::recursive);
   for (const char* cam : {"cam0", "cam1", "depth0", "depth1"})
     for (const auto& e : fs::directory_iterator(seqDir(part) / cam / "data"))
-      if (e.path().filename().string() >= "0000000000120000000") fs::remove(e.path());
+      if (e.path().filename().string() >= "0000000000160000000") fs::remove(e.path());
   RunResult resumed = runInterinet(args + part.string());
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_NE(resumed.err.find("resuming: 3 of 6 frames"), std::string::npos) << resumed.err;
+  EXPECT_NE(resumed.err.find("resuming: 4 of 6 frames"), std::string::npos) << resumed.err;
   const auto again = readTree(part);
   ASSERT_EQ(again.size(), full.size());
   for (const auto& [name, bytes] : full) {
@@ -598,8 +602,15 @@ TEST(Generate, TemporalReuseResumesToTheSameBytes) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   const std::string last = "default_room/seq_000/cam0/data/0000000000200000000.exr";
   EXPECT_NE(readTree(dir / "plain").at(last), full.at(last));
+  // frame 0 has no past: reuse leaves it as rendered, and only the planned samples (more of
+  // them where no earlier frame saw a point: all of frame 0) change it
   const std::string first = "default_room/seq_000/cam0/data/0000000000000000000.exr";
-  EXPECT_EQ(readTree(dir / "plain").at(first), full.at(first)) << "frame 0 has no past";
+  EXPECT_NE(readTree(dir / "plain").at(first), full.at(first));
+  RunResult unplanned = runInterinet(
+      kSmall + "--hdr --frames 1 --spp 2 --temporal 3 --history-boost 1 --history-boost-edges 1 " +
+      "--passes rgb --format asl --imu 0 --out " + (dir / "unplanned").string());
+  ASSERT_EQ(unplanned.exit_code, 0) << unplanned.err;
+  EXPECT_EQ(readTree(dir / "plain").at(first), readTree(dir / "unplanned").at(first));
 }
 
 TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
@@ -608,6 +619,9 @@ TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
   RunResult zero = runInterinet(kSmall + "--temporal 0" + out);
   EXPECT_NE(zero.exit_code, 0);
   EXPECT_NE(zero.err.find("--temporal"), std::string::npos) << zero.err;
+  RunResult boost = runInterinet(kSmall + "--history-boost 17" + out);
+  EXPECT_NE(boost.exit_code, 0);
+  EXPECT_NE(boost.err.find("--history-boost"), std::string::npos) << boost.err;
   RunResult blur = runInterinet(kSmall + "--temporal 4 --exposure-ms 5" + out);
   EXPECT_NE(blur.exit_code, 0);
   EXPECT_NE(blur.err.find("global shutter"), std::string::npos) << blur.err;

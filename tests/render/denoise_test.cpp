@@ -280,6 +280,46 @@ TEST(Denoise, ConstantImageStaysConstant) {
   }
 }
 
+// Indoor Monte Carlo noise is skewed: most samples of a wall pixel find little light, a few find
+// much (here 16 samples per pixel, each 0 or 8 with probability 7/8 and 1/8: mean 1), and the
+// pixel's own sample variance grows with its value. The colour stop then leans toward the
+// dark majority and the filtered wall comes out dark; mean_levels keeps the input's light.
+TEST(Denoise, SkewedNoiseDarkensTheColourStopAndMeanLevelsKeepTheLight) {
+  const int w = 160, h = 120, spp = 16;
+  ImageF rgb(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1, 3.f), var(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      normal.at(x, y, 2) = -1.f;
+      CounterRng rng(5, RngStream::Sensor, 1, static_cast<uint32_t>(y * w + x), 0);
+      double sum = 0, sum2 = 0;
+      for (int s = 0; s < spp; ++s) {
+        const double v = rng.uniform() < 0.125f ? 8.0 : 0.0;
+        sum += v;
+        sum2 += v * v;
+      }
+      const double mean = sum / spp, var_mean = (sum2 - sum * sum / spp) / (spp - 1) / spp;
+      for (int c = 0; c < 3; ++c) {
+        rgb.at(x, y, c) = static_cast<float>(0.5 * mean);  // albedo x irradiance 1
+        var.at(x, y, c) = static_cast<float>(0.25 * var_mean);
+      }
+    }
+  DenoiseOptions plain;
+  plain.iterations = 3;
+  plain.sigma_color = 2.f;
+  DenoiseOptions kept = plain;
+  kept.mean_levels = 5;
+  const ImageF a = denoise(rgb, albedo, normal, depth, &var, plain);
+  const ImageF b = denoise(rgb, albedo, normal, depth, &var, kept);
+  const ImageF truth(w, h, 3, 0.5f);
+  const double mean_in = meanOf(rgb) / 0.5, mean_a = meanOf(a) / 0.5, mean_b = meanOf(b) / 0.5;
+  const double rmse_a = rmse(a, truth, everywhere), rmse_b = rmse(b, truth, everywhere);
+  std::printf("input mean %.4f; colour stop: mean %.4f, RMSE %.4f; keeping the mean: %.4f, %.4f\n",
+              mean_in, mean_a, rmse_a, mean_b, rmse_b);
+  EXPECT_LT(mean_a, mean_in - 0.02) << "the colour stop's bias this test is about";
+  EXPECT_NEAR(mean_b, mean_in, 0.005);
+  EXPECT_LT(rmse_b, rmse_a) << "the bias was most of the error";
+}
+
 // A single pixel 100x brighter than a flat surround (one sample that found a lamp through its
 // shade) must not become a blotch; a 2x2 bright patch is a feature and stays brighter.
 TEST(Denoise, IsolatedFireflyGoesABrightPatchStays) {

@@ -304,6 +304,52 @@ TEST(PathTracer, SameBytesForOneAndTwoThreads) {
   EXPECT_NE(a.rgb.data, c.rgb.data);
 }
 
+// RenderOptions::spp_multiplier: a pixel rendered at spp x m is the pixel a plain render at that
+// spp gives, bit for bit (the same samples), with its layers; the sample count adds up.
+TEST(PathTracer, APixelsSamplesMultiplierDrawsTheSamplesOfAPlainRenderAtThatSpp) {
+  Scene s = furnace(0.7f, 0.3f);
+  Renderer r(s);
+  const CameraIntrinsics K = CameraIntrinsics::centred(40, 30, 30);
+  const LensModel lens = LensModel::pinhole(K);
+  const Pose pose = Pose::lookAt(Vec3(0.1, 0.1, 1.0), Vec3(1, 1, 1.0), Vec3::UnitZ());
+  RenderOptions opt = rgbOnly(2, 8);
+  opt.seed = 99;
+  ImageU8 m(40, 30, 1, 1);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) m.at(x, y) = static_cast<uint8_t>(1 + (x / 7 + y / 5) % 4);
+  m.at(3, 3) = 0;  // 0 counts as 1
+  RenderOptions boosted = opt;
+  boosted.spp_multiplier = &m;
+  RenderStats stats;
+  r.setStats(&stats);
+  Frame f;
+  RgbLayers layers;
+  r.render(lens, CameraExposure::fixed(pose), boosted, 5, f, &layers);
+  r.setStats(nullptr);
+  uint64_t expected_samples = 0;
+  for (uint8_t v : m.data) expected_samples += 2u * std::max<uint8_t>(v, 1);
+  EXPECT_EQ(stats.samples.load(), expected_samples);
+  int checked = 0;
+  for (int mult = 1; mult <= 4; ++mult) {
+    RenderOptions plain = opt;
+    plain.spp = 2 * mult;
+    Frame g;
+    RgbLayers gl;
+    r.render(lens, CameraExposure::fixed(pose), plain, 5, g, &gl);
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) {
+        if (std::max<int>(m.at(x, y), 1) != mult) continue;
+        ++checked;
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(f.rgb.at(x, y, c), g.rgb.at(x, y, c)) << x << "," << y << " x" << mult;
+          ASSERT_EQ(layers.variance.at(x, y, c), gl.variance.at(x, y, c)) << x << "," << y;
+          ASSERT_EQ(layers.diffuse.at(x, y, c), gl.diffuse.at(x, y, c)) << x << "," << y;
+        }
+      }
+  }
+  EXPECT_EQ(checked, 40 * 30);
+}
+
 // Textures seen by indirect rays are read through a cone that a rough bounce widens
 // (kIndirectConeSpread): the furnace's floor carries a millimetre checkerboard of albedo 0 and 1,
 // and a narrow camera looks at the plain ceiling, so the checker reaches the image only through
