@@ -18,7 +18,10 @@ Per frame that has a reference, over the flat diffuse regions of the label pass 
             more than 10 % off the reference's (3x3 box too), in pixels
 Over consecutive frames k, k+1 of OURS_SEQ (the flicker of the issue): the flat pixels of k whose
 forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label neighbourhood on
-both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709).
+both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709),
+also per class (flicker_walls, _floors, _ceilings) and, where the sequence has the albedo pass
+(`--passes ...,albedo`), on the light alone (flicker_light: colour / albedo, so the texture's
+gradient under a sub-pixel reprojection does not count as flicker).
 Specular light moves with the view, so a perfect render does not give 0 on a varnished floor.
 Prints one line "SEQ_JSON {...}".
 """
@@ -96,9 +99,15 @@ def main():
     names = frames(a.seq)
     if not names:
         sys.exit(f"sequence_quality.py: no cam0/data/*.exr in {a.seq} (generate --hdr)")
-    out = {"frames": {}, "flicker": {}}
+    out = {"frames": {}, "flicker": {}, "flicker_walls": {}, "flicker_floors": {},
+           "flicker_ceilings": {}, "flicker_light": {}}
     img = {n: load(os.path.join(a.seq, "cam0/data", n + ".exr"))[:, :, :3] for n in names}
     lab = {n: load_labels(os.path.join(a.seq, "label0/data", n + "_nyu.png")) for n in names}
+    albedo = {}  # the albedo pass where it was written (generate --passes ...,albedo)
+    for n in names:
+        p = os.path.join(a.seq, "albedo0/data", n + ".png")
+        if os.path.exists(p):
+            albedo[n] = load(p)[:, :, :3]
     for n in frames(a.ref) if a.ref else []:
         if n not in img:
             continue
@@ -137,8 +146,22 @@ def main():
         L0, L1 = img[n0] @ REC709, img[n1] @ REC709
         diff = np.abs(L1[tyc, txc] - L0)[ok]
         out["flicker"][n0] = float(diff.mean() / max(L0[ok].mean(), 1e-12)) if ok.any() else None
-    fl = [v for v in out["flicker"].values() if v is not None]
-    out["mean_flicker"] = float(np.mean(fl)) if fl else None
+        for cls, name in zip(FLAT, ("walls", "floors", "ceilings")):
+            m = ok & (l0 == cls)
+            if m.sum() > 100:
+                d = np.abs(L1[tyc, txc] - L0)[m]
+                out["flicker_" + name].setdefault(n0, float(d.mean() / max(L0[m].mean(), 1e-12)))
+        # the same on the light alone (colour / albedo, texture divided out): nearest-pixel
+        # reprojection of a textured surface differs by its texture's gradient even when exact
+        a0, a1 = albedo.get(n0), albedo.get(n1)
+        if a0 is not None and a1 is not None:
+            S0 = (img[n0] / np.maximum(a0, 0.01)) @ REC709
+            S1 = (img[n1] / np.maximum(a1, 0.01)) @ REC709
+            d = np.abs(S1[tyc, txc] - S0)[ok]
+            out["flicker_light"][n0] = float(d.mean() / max(S0[ok].mean(), 1e-12)) if ok.any() else None
+    for key in ("flicker", "flicker_walls", "flicker_floors", "flicker_ceilings", "flicker_light"):
+        fl = [v for v in out[key].values() if v is not None]
+        out["mean_" + key] = float(np.mean(fl)) if fl else None
     for key in ("rel_rmse_flat", "rel_rmse_flat_true"):
         rr = [f[key] for f in out["frames"].values() if key in f]
         out["mean_" + key] = float(np.mean(rr)) if rr else None
