@@ -161,6 +161,22 @@ CameraPath loadTrajectory(const SequenceJob& a, const Scene& scene) {
   return out;
 }
 
+/// The temporal reuse window in frames: --temporal, else 16, or 1 (off) with motion blur or a
+/// rolling shutter, which temporal reuse cannot follow.
+int temporalWindow(const SequenceJob& a) {
+  if (a.temporal_set) return a.temporal;
+  return a.exposure_ms > 0 || a.readout_ms > 0 ? 1 : a.temporal;
+}
+
+/// Temporal reuse's options from the job's flags.
+TemporalReuseOptions reuseOptions(const SequenceJob& a) {
+  TemporalReuseOptions t;
+  t.window = temporalWindow(a);
+  t.boost = a.history_boost;
+  t.boost_edges = a.history_boost_edges;
+  return t;
+}
+
 void validateArgs(const SequenceJob& a) {
   if (a.frames < 1) throw InputError("", "--frames", "must be >= 1");
   if (a.frame_begin >= a.frame_end)
@@ -179,10 +195,7 @@ void validateArgs(const SequenceJob& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
-  if (a.history_boost < 1 || a.history_boost > 16)
-    throw InputError("", "--history-boost", "must be in 1..16 (1 = off)");
-  if (a.history_boost_edges < 1 || a.history_boost_edges > 16)
-    throw InputError("", "--history-boost-edges", "must be in 1..16 (1 = off)");
+  reuseOptions(a).validate("");  // --history-boost, --history-boost-edges
   if (a.temporal_set && a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
     throw InputError("", "--temporal",
                      "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
@@ -265,21 +278,6 @@ CameraExposure exposureAt(const CameraPath& cam, size_t k, const Shutter& shutte
       ex.knots.emplace_back(it->t_ns - open, it->T_world_camera);
   }
   return ex;
-}
-
-/// The temporal reuse window in frames: --temporal, else 16, or 1 (off) with motion blur or a
-/// rolling shutter, which temporal reuse cannot follow.
-int temporalWindow(const SequenceJob& a) {
-  if (a.temporal_set) return a.temporal;
-  return a.exposure_ms > 0 || a.readout_ms > 0 ? 1 : a.temporal;
-}
-
-TemporalReuseOptions reuseOptions(const SequenceJob& a) {
-  TemporalReuseOptions t;
-  t.window = temporalWindow(a);
-  t.boost = a.history_boost;
-  t.boost_edges = a.history_boost_edges;
-  return t;
 }
 
 nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const RenderOptions& opt,

@@ -48,7 +48,8 @@ void TemporalReuseOptions::validate(const std::string& where) const {
   if (boost < 1 || boost > 16)
     throw InputError(where, "--history-boost", fmt::format("{} is outside 1..16", boost));
   if (boost_edges < 1 || boost_edges > 16)
-    throw InputError(where, "temporal.boost_edges", fmt::format("{} is outside 1..16", boost_edges));
+    throw InputError(where, "--history-boost-edges",
+                     fmt::format("{} is outside 1..16", boost_edges));
   if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
     throw InputError(where, "temporal.albedo_epsilon", "must be in (0, 1]");
   flow.validate(where);
@@ -73,29 +74,30 @@ const ImageF& TemporalReuse::depthOf(const Frame& f) const {
   return options_.flow.depth_kind == DepthKind::ZDepth ? f.depth_z : f.depth_ray;
 }
 
-TemporalReuse::Reprojection TemporalReuse::reproject(const ImageF& depth, const Frame& f,
-                                                     const Pose& T_world_camera,
-                                                     double scene_time_s) const {
-  const int W = lens_.K.width, H = lens_.K.height;
-  INET_CHECK(depth.width == W && depth.height == H && f.label.width == W &&
-             (!has_motion_ || f.instance.width == W));
-  const size_t n_px = static_cast<size_t>(W) * H;
+TemporalReuse::Past TemporalReuse::geometryOf(const Frame& f, const Pose& T_world_camera,
+                                              double scene_time_s) const {
+  const ImageF& depth = depthOf(f);
+  INET_CHECK(depth.width == lens_.K.width && depth.height == lens_.K.height &&
+             f.label.width == lens_.K.width && (!has_motion_ || f.instance.width == lens_.K.width));
   // instances matter to the visibility test and the taps only where objects move (the motion
   // is per instance); otherwise the class and the depths decide (see interiorPixels)
-  const ImageU16 no_instances;
-  const ImageU16& instance = has_motion_ ? f.instance : no_instances;
-  Reprojection r;
-  r.T_world_camera = T_world_camera;
-  r.scene_time_s = scene_time_s;
-  r.self = Past{T_world_camera, scene_time_s, depth, instance, f.label, {}, {},
-                interiorPixels(f.label, has_motion_ ? &f.instance : nullptr, depth), {}};
+  const ImageU16* instance = has_motion_ ? &f.instance : nullptr;
+  return Past{T_world_camera, scene_time_s, depth, instance ? *instance : ImageU16(), f.label,
+              {}, {}, interiorPixels(f.label, instance, depth), {}};
+}
+
+TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose& T_world_camera,
+                                                     double scene_time_s) const {
+  const int W = lens_.K.width, H = lens_.K.height;
+  const size_t n_px = static_cast<size_t>(W) * H;
+  Reprojection r{geometryOf(f, T_world_camera, scene_time_s), {}};
   const Past& self = r.self;
   // Where each interior pixel lands in each remembered frame: the (up to) 4 bilinear taps around
   // the landing point that are interior pixels of the pixel's own class (and instance, where
   // objects move; the flow's visibility rule has checked their depths), with weights summing to
   // 1; none where the point is not seen there.
   r.source.resize(past_.size());
-  const FlowFrameView now{depth, instance, T_world_camera};
+  const FlowFrameView now{self.depth, self.instance, T_world_camera};
   const bool wrap_u = lens_.type == LensType::Panorama;
   for (size_t j = 0; j < past_.size(); ++j) {
     const Past& p = past_[j];
@@ -134,32 +136,27 @@ TemporalReuse::Reprojection TemporalReuse::reproject(const ImageF& depth, const 
         }
     });
   }
-  // the samples multiplier: more where fewer remembered frames will give reused light
-  r.multiplier = ImageU8(W, H, 1, 1);
-  for (size_t i = 0; i < n_px; ++i) {
-    if (!self.interior.data[i]) {
-      r.multiplier.data[i] = static_cast<uint8_t>(options_.boost_edges);
-      continue;
-    }
-    int seen = 0;
-    for (const std::vector<Taps>& src : r.source) seen += src[i].count > 0 ? 1 : 0;
-    r.multiplier.data[i] = static_cast<uint8_t>(std::max(1, options_.boost - seen));
-  }
   return r;
 }
 
 const ImageU8& TemporalReuse::plan(const Frame& gt, const Pose& T_world_camera,
                                    double scene_time_s) {
-  planned_ = std::make_unique<Reprojection>(
-      reproject(depthOf(gt), gt, T_world_camera, scene_time_s));
-  return planned_->multiplier;
+  planned_ = std::make_unique<Reprojection>(reproject(gt, T_world_camera, scene_time_s));
+  // the samples multiplier: more where fewer remembered frames will give reused light
+  const std::vector<std::vector<Taps>>& source = planned_->source;
+  const ImageU8& interior = planned_->self.interior;
+  planned_multiplier_ = ImageU8(interior.width, interior.height, 1, 1);
+  for (size_t i = 0; i < interior.data.size(); ++i) {
+    int seen = 0;
+    for (const std::vector<Taps>& src : source) seen += src[i].count > 0 ? 1 : 0;
+    planned_multiplier_.data[i] = static_cast<uint8_t>(
+        interior.data[i] ? std::max(1, options_.boost - seen) : options_.boost_edges);
+  }
+  return planned_multiplier_;
 }
 
 void TemporalReuse::addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s) {
-  const ImageU16 no_instances;
-  remember(Past{T_world_camera, scene_time_s, depthOf(gt), has_motion_ ? gt.instance : no_instances,
-                gt.label, {}, {},
-                interiorPixels(gt.label, has_motion_ ? &gt.instance : nullptr, depthOf(gt)), {}});
+  remember(geometryOf(gt, T_world_camera, scene_time_s));
   planned_.reset();
 }
 
@@ -182,14 +179,15 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   // the reprojection plan() made for this frame (its ground truth is this frame's), else now;
   // without a plan the frame was rendered at multiplier 1
   std::unique_ptr<Reprojection> r = std::move(planned_);
-  if (!r || !(r->T_world_camera.t == T_world_camera.t) ||
-      !(r->T_world_camera.q.coeffs() == T_world_camera.q.coeffs()) ||
-      r->scene_time_s != scene_time_s) {
-    r = std::make_unique<Reprojection>(reproject(depth, frame, T_world_camera, scene_time_s));
-    r->multiplier = ImageU8();
+  ImageU8 multiplier = std::move(planned_multiplier_);
+  if (!r || !(r->self.T_world_camera.t == T_world_camera.t) ||
+      !(r->self.T_world_camera.q.coeffs() == T_world_camera.q.coeffs()) ||
+      r->self.scene_time_s != scene_time_s) {
+    r = std::make_unique<Reprojection>(reproject(frame, T_world_camera, scene_time_s));
+    multiplier = ImageU8();
   }
   Past self = std::move(r->self);
-  self.multiplier = std::move(r->multiplier);
+  self.multiplier = std::move(multiplier);
   self.irradiance = ImageF(W, H, 3);
   self.variance = ImageF(W, H, 3);
   // this frame's demodulated diffuse light: what later frames will read

@@ -140,14 +140,12 @@ class TemporalReuse {
   };
   /// A frame's geometry and where its pixels land in each remembered frame (oldest first).
   struct Reprojection {
-    Pose T_world_camera;
-    double scene_time_s = 0;
     Past self;  ///< the frame's geometry (colour fields empty)
     std::vector<std::vector<Taps>> source;
-    ImageU8 multiplier;  ///< plan()'s answer
   };
-  Reprojection reproject(const ImageF& depth, const Frame& f, const Pose& T_world_camera,
-                         double scene_time_s) const;
+  /// Frame f's geometry (its depth, label, instance where objects move, interior pixels).
+  Past geometryOf(const Frame& f, const Pose& T_world_camera, double scene_time_s) const;
+  Reprojection reproject(const Frame& f, const Pose& T_world_camera, double scene_time_s) const;
   /// The depth of the flow's kind in f.
   const ImageF& depthOf(const Frame& f) const;
   void remember(Past&& p);
@@ -158,6 +156,7 @@ class TemporalReuse {
   bool has_motion_ = false;  ///< some object of the scene moves
   std::deque<Past> past_;  ///< oldest first
   std::unique_ptr<Reprojection> planned_;  ///< plan()'s, for the next add()
+  ImageU8 planned_multiplier_;             ///< plan()'s answer
 };
 
 }  // namespace inet
