@@ -67,6 +67,11 @@ void addLensFlags(CLI::App& cmd, LensSettings& x) {
   cmd.add_option("--fisheye-fov", x.fisheye_fov_deg,
                  "fisheye field of view in degrees, in (0, 360] (default 180)")
       ->each([&x](const std::string&) { x.fisheye_fov_set = true; });
+  cmd.add_option("--distortion", x.distortion,
+                 "lens distortion k1,k2,p1,p2[,k3]: Brown-Conrady radial-tangential coefficients "
+                 "in OpenCV's order, as cv::projectPoints applies them (pinhole and thin_lens; "
+                 "written to sensor.yaml / camera.json; default none)")
+      ->delimiter(',');
 }
 
 void addEventFlags(CLI::App& cmd, EventSettings& x) {

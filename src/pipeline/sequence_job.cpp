@@ -975,6 +975,11 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
     throw InputError("", "--stereo", "the baseline must be in 0..10 m");
   setup.event_opt = a.events.options(a.seed);
   setup.formats = splitCommaList(a.formats);
+  if (setup.lens.k3 != 0 &&
+      std::find(setup.formats.begin(), setup.formats.end(), "asl") != setup.formats.end())
+    throw InputError("", "--distortion",
+                     "the ASL sensor.yaml (Kalibr radial-tangential) holds k1 k2 p1 p2 only: give "
+                     "4 values, or a fifth (k3) with --format tum");
   // Load and check every input before anything is written; consecutive jobs of one sequence
   // (the dataset builder's frame ranges) share what they load
   const std::shared_ptr<const Prepared> prepared = preparedFor(a, setup.want);

@@ -230,6 +230,19 @@ LensType LensSettings::type() const {
     throw InputError("", "--focus", "only used by --lens thin_lens, not " + name);
   if (t != LensType::Fisheye && fisheye_fov_set)
     throw InputError("", "--fisheye-fov", "only used by --lens fisheye, not " + name);
+  if (!distortion.empty()) {
+    if (distortion.size() != 4 && distortion.size() != 5)
+      throw InputError("", "--distortion",
+                       fmt::format("needs 4 or 5 values k1,k2,p1,p2[,k3], not {}",
+                                   distortion.size()));
+    for (double k : distortion)
+      if (!(std::isfinite(k) && std::abs(k) <= 100))
+        throw InputError("", "--distortion", fmt::format("{} is not a coefficient in [-100, 100]", k));
+    if (t != LensType::Pinhole && t != LensType::ThinLens)
+      throw InputError("", "--distortion",
+                       "only used by --lens pinhole and thin_lens, not " + name +
+                           " (whose projection has no Brown-Conrady terms)");
+  }
   return t;
 }
 
@@ -250,7 +263,21 @@ LensModel LensSettings::make(const CameraIntrinsics& K, const std::string& where
       m = LensModel::panorama(K.width, K.height);
       break;
   }
-  m.validate(where);
+  if (!distortion.empty()) {
+    m.k1 = distortion[0];
+    m.k2 = distortion[1];
+    m.p1 = distortion[2];
+    m.p2 = distortion[3];
+    m.k3 = distortion.size() == 5 ? distortion[4] : 0.0;
+  }
+  try {
+    m.validate(where);
+  } catch (const InputError& e) {
+    // the coefficients came from one flag: name it rather than the model's field names
+    if (m.hasDistortion() && e.field() == "k1..k3, p1, p2")
+      throw InputError("", "--distortion", e.problem());
+    throw;
+  }
   return m;
 }
 

@@ -5,6 +5,7 @@
 // dataset spec. Errors name the command-line flag of the field, as a user sees it there.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/lens.h"
@@ -103,12 +104,16 @@ struct LensSettings {
   bool focus_set = false;  ///< focus_m was given (only a thin lens uses it)
   double fisheye_fov_deg = 180.0;
   bool fisheye_fov_set = false;  ///< fisheye_fov_deg was given (only a fisheye uses it)
+  /// Brown-Conrady coefficients k1, k2, p1, p2[, k3] in OpenCV's order (pinhole and thin lens);
+  /// empty = none
+  std::vector<double> distortion;
   /// The chosen model. InputError naming the flag: unknown --lens (listing the valid names),
   /// values out of range, or a setting the model does not use (--aperture/--focus without a
-  /// thin lens, --fisheye-fov without a fisheye).
+  /// thin lens, --fisheye-fov without a fisheye, --distortion on a fisheye or panorama).
   LensType type() const;
   /// The lens. Pinhole and thin lens use K as given; a fisheye takes only K's size (square,
   /// checked by the caller) and derives f from fisheye_fov_deg; a panorama takes only K's size.
+  /// InputError on --distortion that folds over inside the image (it cannot be rendered).
   LensModel make(const CameraIntrinsics& K, const std::string& where) const;
 };
 

@@ -23,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/image_io.h"
+#include "render/lens.h"
 #include "sensors/flow_io.h"
 
 namespace fs = std::filesystem;
@@ -344,6 +345,66 @@ TEST(Generate, PanoramaWritesEquirectangularCalibration) {
   EXPECT_EQ(expectPngHoldsRayDistance(s), 2u * 64 * 32);
 }
 
+/// --distortion reaches every pass and every calibration file: a scene point keeps its ray
+/// distance, so the distorted depth at pixel u equals the undistorted depth at the pixel where
+/// the undistorted pinhole sees the same ray (K times the undistorted normalised point).
+TEST(Generate, DistortionBendsEveryPassAndIsWrittenToTheCalibration) {
+  TempDir dir("gen_distortion");
+  // EuRoC cam0's radtan coefficients (Kalibr)
+  const std::string k = "-0.28340811,0.07395907,0.00019359,1.76187114e-05";
+  const std::string common = "generate --layout builtin:room --width 160 --height 120 --fx 120 "
+                             "--fy 120 --frames 2 --spp 1 --passes depth,ray_depth,label,flow --format asl "
+                             "--no-progress ";
+  RunResult plain = runInterinet(common + "--out " + (dir / "plain").string());
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  RunResult bent = runInterinet(common + "--distortion " + k + " --out " + (dir / "bent").string());
+  ASSERT_EQ(bent.exit_code, 0) << bent.err;
+  const fs::path s = seqDir(dir / "bent");
+  for (const char* folder : {"depth0", "label0"}) {
+    const fs::path yaml = s / folder / "sensor.yaml";
+    EXPECT_TRUE(hasLine(yaml, "distortion_model: radial-tangential")) << folder;
+    EXPECT_TRUE(hasLine(yaml, "distortion_coefficients: [-0.28340811, 0.07395907, 0.00019359, "
+                              "1.76187114e-05]"))
+        << readTextFile(yaml);
+  }
+  auto meta = nlohmann::json::parse(readTextFile(s / "meta.json"));
+  ASSERT_EQ(meta["camera"]["distortion_coefficients"].size(), 5u);  // OpenCV's k1 k2 p1 p2 k3
+  EXPECT_DOUBLE_EQ(meta["camera"]["distortion_coefficients"][0].get<double>(), -0.28340811);
+  EXPECT_EQ(meta["camera"]["distortion_model"], "radial-tangential");
+
+  const std::string first = "depth0/data/0000000000000000000.exr";
+  const ImageF d_plain = readExr(seqDir(dir / "plain") / first, {"Z"});
+  const ImageF d_bent = readExr(s / first, {"Z"});
+  LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(160, 120, 120));
+  lens.k1 = -0.28340811, lens.k2 = 0.07395907, lens.p1 = 0.00019359, lens.p2 = 1.76187114e-05;
+  std::vector<double> mapped, same;
+  for (int y = 0; y < 120; y += 3)
+    for (int x = 0; x < 160; x += 3) {
+      const double mx = (x + 0.5 - lens.K.cx) / lens.K.fx, my = (y + 0.5 - lens.K.cy) / lens.K.fy;
+      if (mx * mx + my * my < 0.25) continue;  // the outer part, where distortion moves pixels
+      Eigen::Vector2d xy;
+      ASSERT_TRUE(undistortNormalised(lens, {mx, my}, xy));
+      const int u = static_cast<int>(std::floor(lens.K.cx + lens.K.fx * xy.x()));
+      const int v = static_cast<int>(std::floor(lens.K.cy + lens.K.fy * xy.y()));
+      if (u < 0 || v < 0 || u >= 160 || v >= 120) continue;
+      const float d = d_bent.at(x, y, 0);
+      mapped.push_back(std::abs(d_plain.at(u, v, 0) - d) / d);
+      same.push_back(std::abs(d_plain.at(x, y, 0) - d) / d);
+    }
+  ASSERT_GT(mapped.size(), 300u);
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  // nearest pixel of a smooth room: well under 1 %; the same pixel is far off
+  EXPECT_LT(median(mapped), 0.01);
+  EXPECT_GT(median(same), 5 * median(mapped));
+  // the principal point does not move
+  EXPECT_NEAR(d_bent.at(80, 60, 0), d_plain.at(80, 60, 0), 1e-4 * d_plain.at(80, 60, 0));
+  // the flow of a distorted camera is not the pinhole flow
+  EXPECT_NE(readTree(s / "flow0"), readTree(seqDir(dir / "plain") / "flow0"));
+}
+
 TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
   TempDir dir("gen_badlens");
   const std::pair<std::string, std::string> cases[] = {
@@ -359,6 +420,13 @@ TEST(Generate, BadLensCombinationsFailNamingTheFlag) {
       {"--lens pinhole --aperture 0.01", "--aperture"},
       {"--lens fisheye --focus 3", "--focus"},
       {"--fisheye-fov 90", "--fisheye-fov"},
+      {"--distortion 0.1,0.2,0", "--distortion"},
+      {"--distortion 0.1,0,0,0,0,0", "--distortion"},
+      {"--distortion nan,0,0,0", "--distortion"},
+      {"--distortion -0.2,0.05,0,0,0.01", "--distortion"},  // k3 and the ASL sensor.yaml
+      {"--lens fisheye --width 64 --distortion -0.2,0.05,0,0", "--distortion"},
+      {"--lens panorama --width 64 --height 32 --distortion -0.2,0.05,0,0", "--distortion"},
+      {"--width 640 --height 480 --fx 600 --fy 600 --distortion -2,0,0,0", "--distortion"},
       {"--hdr --passes depth", "--hdr"},
       {"--hdr --format tum", "--hdr"},
   };
