@@ -8,7 +8,9 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "dataset/format_writer.h"
 #include "render/lens.h"
+#include "studio/camera_keys.h"
 #include "studio/json_fields.h"
 #include "trajectory/formats.h"
 
@@ -18,16 +20,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-/// LensSettings' messages with the request's keys: "--aperture" -> "aperture_m", ...
-std::string lensKey(std::string text) {
-  static const std::pair<const char*, const char*> keys[] = {
-      {"--aperture", "aperture_m"}, {"--focus", "focus_m"}, {"--fisheye-fov", "fisheye_fov_deg"}};
-  for (const auto& [flag, key] : keys)
-    for (size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at))
-      text.replace(at, std::strlen(flag), key);
-  return flagToKey(text);
-}
 
 /// The first studio_NNN with no folder under `parent`.
 std::string freeSequenceName(const fs::path& parent) {
@@ -70,7 +62,8 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
           {"dir", s.dir},
           {"sequences", std::move(dirs)},
           {"trajectory_file", req.trajectory_file.string()},
-          {"contact_sheet", "studio/" + job.sequence + "_sheet.png"},
+          {"contact_sheet",
+           job.contact_sheet.empty() ? json() : json("studio/" + job.sequence + "_sheet.png")},
           {"frames", s.frames},
           {"finished", s.finished},
           {"files", s.files.size()},
@@ -83,8 +76,8 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
 SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
                                      const fs::path& out) {
   checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence", "lens", "stereo",
-                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config",
-                         "aperture_m", "focus_m", "fisheye_fov_deg"});
+                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config", "aperture_m",
+                         "focus_m", "fisheye_fov_deg", "distortion", "formats"});
   SequenceRequest r;
   r.design = parseDesignRequest(body);
   SequenceJob& job = r.job;
@@ -96,20 +89,22 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   if (!(job.K.fx > 0 && job.K.fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
   job.width_set = job.height_set = true;
   job.spp = integerIn(body, "spp", 4, 1, 4096);
-  // the camera and sensors, as generate's flags (their own checks run with the job's)
-  job.lens.lens = text(body, "lens", "pinhole");
-  const LensType lens = parseLensType(job.lens.lens, "", "lens");
-  // the thin lens's depth of field and the fisheye's field of view; LensSettings::type()
-  // refuses a setting the chosen lens does not use
-  job.lens.aperture_m = number(body, "aperture_m", 0.0);
-  job.lens.focus_set = body.contains("focus_m");
-  job.lens.focus_m = number(body, "focus_m", job.lens.focus_m);
-  job.lens.fisheye_fov_set = body.contains("fisheye_fov_deg");
-  job.lens.fisheye_fov_deg = number(body, "fisheye_fov_deg", job.lens.fisheye_fov_deg);
+  // the camera and sensors, as generate's flags, checked here (the lens is made for the
+  // image size: a fisheye's square, a panorama's 2:1, a distortion that does not fold)
+  job.lens = parseLensKeys(body);
+  const LensType lens = job.lens.type();
+  lensModelOf(job.lens, CameraIntrinsics::centred(job.K.width, job.K.height, job.K.fx));
+  job.formats = text(body, "formats", job.formats);
   try {
-    job.lens.type();
+    const std::vector<std::string> formats = parseFormatList(job.formats);
+    // the pipeline's check, at once: Kalibr's radial-tangential model has no k3
+    if (job.lens.distortion.size() == 5 && job.lens.distortion[4] != 0 &&
+        std::find(formats.begin(), formats.end(), "asl") != formats.end())
+      throw InputError("", "distortion",
+                       "the ASL sensor.yaml (Kalibr radial-tangential) holds k1 k2 p1 p2 only: "
+                       "give 4 values, or a fifth (k3) with formats \"tum\"");
   } catch (const InputError& e) {
-    throw InputError(e.file(), lensKey(e.field()), lensKey(e.problem()));
+    throw asRequestError(e);
   }
   // a fisheye's and a panorama's focal length follows from the image size
   job.fx_set = job.fy_set = lens == LensType::Pinhole || lens == LensType::ThinLens;
@@ -139,7 +134,9 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
     throw InputError((parent / job.sequence).string(), "sequence",
                      "exists already: choose another name");
   r.trajectory_file = out / "studio" / (job.sequence + "_trajectory.csv");
-  job.contact_sheet = (out / "studio" / (job.sequence + "_sheet.png")).string();
+  // the pipeline's contact sheet shows the ASL layout's cam0/ frames
+  if (job.formats.find("asl") != std::string::npos)
+    job.contact_sheet = (out / "studio" / (job.sequence + "_sheet.png")).string();
   return r;
 }
 
@@ -156,7 +153,7 @@ json runSequenceRequest(const SequenceRequest& req, JobContext& ctx) {
   try {
     return renderInRanges(req, job, path.size(), ctx);
   } catch (const InputError& e) {  // the pipeline words its checks as generate's flags
-    throw InputError(e.file(), flagToKey(e.field()), flagToKey(e.problem()));
+    throw asRequestError(e);
   }
 }
 

@@ -6,13 +6,15 @@
 //   {"width": 16..4096 (320), "height": 16..4096 (240), "fx": pixels (0, 100000] (300;
 //    fy = fx, principal point at the centre; pinhole and thin lens only), "spp": 1..4096 (4),
 //    "sequence": a plain folder name (default: the first free studio_NNN),
-//    "lens": pinhole | thin_lens | fisheye | panorama, "aperture_m", "focus_m" (thin lens),
-//    "fisheye_fov_deg" (fisheye), "stereo": baseline 0..10 m (0 = mono),
+//    the lens keys (studio/camera_keys.h: "lens", "aperture_m", "focus_m", "fisheye_fov_deg",
+//    "distortion": [k1, k2, p1, p2(, k3)]), "stereo": baseline 0..10 m (0 = mono),
 //    "exposure_ms", "readout_ms" (rolling shutter): 0..1000, "imu_rate": 0 (none) or Hz (800),
 //    "passes": as generate --passes ("default"),
-//    "config": as generate --config ("original"; lighting:N, rearranged:N, comma lists)}
-// The pipeline checks the combination when the job starts (a fisheye's square image, a
-// panorama's 2:1, passes' names); its messages name these keys.
+//    "config": as generate --config ("original"; lighting:N, rearranged:N, comma lists),
+//    "formats": as generate --format ("asl,tum"; a k3 needs formats without asl)}
+// The lens is made at once for the image size (a fisheye's square image, a panorama's 2:1, a
+// distortion that folds inside the image are 400); the pipeline checks the rest of the
+// combination when the job starts (passes' names), its messages naming these keys.
 // The path is written as EuRoC (lossless) to <out>/studio/<sequence>_trajectory.csv and the
 // sequence goes to <out>/<layout name>/<sequence>/ as `interiornet generate --layout SOURCE
 // --trajectory that-file --fps FPS --width W --height H --fx FX --fy FX --spp SPP --sequence
@@ -23,8 +25,9 @@
 // a half.
 // Result: {"sequence", "dir" (the first configuration's), "sequences": [{"dir",
 //          "configuration"}, ...], "trajectory_file", "contact_sheet" (up to 6 colour frames of
-//          the first configuration, PNG, relative to <out>: studio/<sequence>_sheet.png),
-//          "frames", "finished", "files", "setup_s", "render_s"}.
+//          the first configuration, PNG, relative to <out>: studio/<sequence>_sheet.png; null
+//          without the asl format, whose cam0/ it shows), "frames", "finished", "files",
+//          "setup_s", "render_s"}.
 #include <nlohmann/json.hpp>
 
 #include <filesystem>

@@ -239,6 +239,37 @@ TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
   req["lens"] = "thin_lens";
   req["fisheye_fov_deg"] = 190;
   expectError(post("/api/jobs/sequence", req), "fisheye_fov_deg");
+  // distortion, refused at once (400 naming the key, no job): the shape, the count, a range,
+  // a lens without Brown-Conrady terms, a polynomial that folds inside the image, a k3 with
+  // the ASL layout
+  const std::vector<json> bad_distortion = {
+      {{"distortion", "0.1,0,0,0"}},
+      {{"distortion", {0.1, 0, 0}}},
+      {{"distortion", {0.1, 0, 0, 0, 0, 0}}},
+      {{"distortion", {0.1, "0", 0, 0}}},
+      {{"distortion", {500, 0, 0, 0}}},
+      {{"distortion", {0.1, 0, 0, 0}}, {"lens", "fisheye"}, {"width", 64}, {"height", 64}},
+      {{"distortion", {-0.9, 0, 0, 0}}, {"fx", 100}},  // folds at r = 0.61 < 2.0 (the corner)
+      {{"distortion", {0.1, 0, 0, 0, 0.01}}},          // k3 and ASL's sensor.yaml
+  };
+  for (const json& keys : bad_distortion) {
+    req = twoKeyframes();
+    req.update(keys);
+    auto r = post("/api/jobs/sequence", req);
+    expectError(r, "distortion");
+    EXPECT_EQ(r->body.find("--"), std::string::npos) << r->body;
+  }
+  // the lens is made for the image at once: a fisheye's square, a panorama's 2:1
+  req = twoKeyframes();
+  req.update({{"lens", "fisheye"}, {"width", 32}, {"height", 24}});
+  auto square = post("/api/jobs/sequence", req);
+  expectError(square, "height");
+  EXPECT_NE(square->body.find("square"), std::string::npos) << square->body;
+  req.update({{"lens", "panorama"}, {"width", 64}, {"height", 64}});
+  expectError(post("/api/jobs/sequence", req), "height");
+  req = twoKeyframes();
+  req["formats"] = "asl,bvh";
+  expectError(post("/api/jobs/sequence", req), "formats");
   auto c = clientOf(*server);
   auto r = c.Post("/api/design/path", "{\"keyframes\": [", "application/json");
   ASSERT_TRUE(r);
@@ -458,13 +489,42 @@ TEST_F(StudioDesignTest, SequenceJobSensors) {
   EXPECT_TRUE(fs::is_directory(dir / "cam1" / "data"));  // the stereo camera
   EXPECT_FALSE(fs::exists(dir / "imu0"));                // imu_rate 0
   EXPECT_FALSE(fs::exists(dir / "normal0"));             // passes rgb,depth
-  // the pipeline's own check, named by the request's key: a fisheye image is square
-  req.update({{"lens", "fisheye"}, {"sequence", "fisheye"}});
+  // the pipeline's own check, named by the request's key: depth_noisy needs a pinhole
+  req.update(
+      {{"lens", "fisheye"}, {"width", 32}, {"sequence", "fisheye"}, {"passes", "rgb,depth_noisy"}});
+  req["height"] = 32;
   const json f = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(f["state"], "failed") << f.dump();
   const std::string msg = f["error"]["error"];
   EXPECT_EQ(msg.find("--"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("square"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pinhole"), std::string::npos) << msg;
+}
+
+TEST_F(StudioDesignTest, SequenceJobDistortion) {
+  // the coefficients reach the sequence's calibration (generate's own test checks the rays)
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.2;
+  req["fps"] = 5;  // 2 frames
+  req.update({{"width", 32},
+              {"height", 24},
+              {"fx", 30},
+              {"spp", 1},
+              {"imu_rate", 0},
+              {"passes", "rgb,depth"},
+              {"formats", "tum"},
+              {"distortion", {-0.2, 0.05, 0.001, -0.002, 0.01}},
+              {"sequence", "distorted"}});
+  auto c = clientOf(*server);
+  const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(s["state"], "done") << s.dump();
+  EXPECT_TRUE(s["result"]["contact_sheet"].is_null()) << s.dump();  // no asl, no cam0/
+  const fs::path dir = s["result"]["dir"].get<std::string>();
+  std::ifstream in(dir / "meta.json");
+  ASSERT_TRUE(in) << dir;
+  const json camera = json::parse(in)["camera"];
+  EXPECT_EQ(camera["distortion_model"], "radial-tangential") << camera.dump();
+  EXPECT_EQ(camera["distortion_coefficients"], json({-0.2, 0.05, 0.001, -0.002, 0.01}))
+      << camera.dump();
 }
 
 }  // namespace

@@ -126,16 +126,27 @@ function follow(job, onStatus) {
   });
 }
 
+/// The lens keys of the camera panel (studio/camera_keys.h): a lens's own settings only for
+/// the lens that uses them; the distortion when a coefficient is not 0 (k3 only when it is
+/// not), for any lens, so that the server's one-line error says which lenses take it.
+function lensRequest() {
+  const lens = $('lens').value;
+  const request = { lens };
+  if (lens === 'thin_lens') Object.assign(request, { aperture_m: num('aperture'),
+    focus_m: num('focus') });
+  if (lens === 'fisheye') request.fisheye_fov_deg = num('fisheye-fov');
+  const d = ['k1', 'k2', 'p1', 'p2', 'k3'].map(num);
+  if (d.some((v) => v !== 0)) request.distortion = d[4] !== 0 ? d : d.slice(0, 4);
+  return request;
+}
+
 async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
-    height: num('height'), spp: num('spp'), lens: $('lens').value, stereo: num('stereo'),
+    height: num('height'), spp: num('spp'), ...lensRequest(), stereo: num('stereo'),
     exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate'),
-    config: $('config').value };
-  // the lens's own settings, only for the lens that uses them (the server refuses the others)
-  if ($('lens').value === 'thin_lens') Object.assign(request, { aperture_m: num('aperture'),
-    focus_m: num('focus') });
-  if ($('lens').value === 'fisheye') request.fisheye_fov_deg = num('fisheye-fov');
+    config: $('config').value, formats: $('formats').value };
+  showJob('starting…', 'pending');
   try {
     const job = await postJson('/api/jobs/sequence', request);
     showJob(`job ${job.id}: pending`, 'pending');
@@ -153,8 +164,10 @@ async function generate() {
     const r = s.result;
     const dirs = r.sequences.map((q) => q.dir).join(', ');
     // the contact sheet the job wrote below --out, which the studio serves as "out"
-    $('job-sheet').hidden = false;
-    $('job-sheet').src = `/api/files/out/${r.contact_sheet}`;
+    if (r.contact_sheet) {  // made from the asl format's frames
+      $('job-sheet').hidden = false;
+      $('job-sheet').src = `/api/files/out/${r.contact_sheet}`;
+    }
     showJob(`done: ${r.frames} frames in ${dirs} (${r.files} files, ` +
       `${(r.setup_s + r.render_s).toFixed(1)} s)`, 'done');
   } catch (err) {

@@ -69,7 +69,13 @@ try {
   page.on('request', (r) => { if (r.url().endsWith('/events')) streamed.push(r.url()); });
   page.on('pageerror', (e) => errors.push(e.message));
   // console errors too: a Content-Security-Policy refusal (a texture, a script) is only logged
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  // (except the 400s the test provokes: Chromium logs every failed fetch)
+  let expected400 = 0;
+  page.on('console', (m) => {
+    if (m.type() !== 'error') return;
+    if (expected400 > 0 && /status of 400/.test(m.text())) return void expected400--;
+    errors.push(m.text());
+  });
 
   step('load the layout');
   const t_load = Date.now();
@@ -255,6 +261,18 @@ try {
   }
   await page.screenshot({ path: join(shots, 'studio_5_export.png') });
 
+  step('distortion: a folding polynomial is refused at once, coefficients reach the sequence');
+  await page.fill('#k1', '-5');  // folds at r = 0.26, inside the image (corner r = 0.67)
+  expected400++;
+  await page.click('#generate');
+  await page.waitForSelector('#job[data-state=failed]', { timeout: 20000 });
+  const refused = await page.textContent('#job');
+  check(/^distortion: /.test(refused) && !/--/.test(refused), `refused: ${refused}`);
+  await page.fill('#k1', '-0.1');
+  await page.fill('#k2', '0.01');
+  await page.fill('#p1', '0.001');
+  await page.fill('#p2', '-0.002');
+
   step('generate a sequence as a background job');
   const t_job = Date.now();
   await page.click('#generate');
@@ -267,6 +285,8 @@ try {
     const yaml = readFileSync(join(m[1], 'cam0', 'sensor.yaml'), 'utf8');
     check(/intrinsics: \[60(\.0)?, 60(\.0)?, /.test(yaml) && /resolution: \[64, 48\]/.test(yaml),
       `the sequence's camera has fx 60 and 64x48: ${yaml.match(/intrinsics.*|resolution.*/g)}`);
+    check(/distortion_coefficients: \[-0\.1, 0\.01, 0\.001, -0\.002\]/.test(yaml),
+      `and the page's distortion: ${yaml.match(/distortion_coefficients.*/)}`);
     const images = readdirSync(join(m[1], 'cam0', 'data')).length;
     check(images === result.frames, `${images} frames rendered of ${result.frames}`);
     await page.waitForFunction(() => document.getElementById('job-sheet').complete, null,
