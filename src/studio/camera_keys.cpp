@@ -71,6 +71,32 @@ LensSettings parseLensKeys(const json& body) {
   return lens;
 }
 
+const std::set<std::string>& responseKeys() {
+  static const std::set<std::string> keys = {"exposure", "exposure_ev", "tone", "sensor_noise"};
+  return keys;
+}
+
+ResponseKeys parseResponseKeys(const json& body) {
+  ResponseKeys r;
+  r.exposure = text(body, "exposure", r.exposure);
+  if (r.exposure != "auto" && r.exposure != "fixed")
+    throw InputError("", "exposure", "must be auto or fixed, not '" + r.exposure + "'");
+  r.response.exposure_ev = static_cast<float>(number(body, "exposure_ev", 0.0));
+  r.response.tone = text(body, "tone", r.response.tone);
+  if (body.contains("sensor_noise")) {
+    if (!body.at("sensor_noise").is_boolean())
+      throw InputError("", "sensor_noise",
+                       "must be true or false, not " + body.at("sensor_noise").dump());
+    r.response.sensor_noise = body.at("sensor_noise").get<bool>();
+  }
+  try {
+    r.response.validate();
+  } catch (const InputError& e) {
+    throw asRequestError(e);
+  }
+  return r;
+}
+
 LensModel lensModelOf(const LensSettings& lens, const CameraIntrinsics& K) {
   const LensType type = lens.type();
   if (type == LensType::Fisheye && K.width != K.height)

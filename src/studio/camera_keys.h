@@ -5,7 +5,10 @@
 //   "lens": pinhole | thin_lens | fisheye | panorama (pinhole), "aperture_m", "focus_m" (thin
 //   lens only), "fisheye_fov_deg" (fisheye only), "distortion": [k1, k2, p1, p2] or
 //   [k1, k2, p1, p2, k3] (Brown-Conrady in OpenCV's order, as generate --distortion; pinhole
-//   and thin lens only).
+//   and thin lens only);
+//   the camera response: "exposure": auto | fixed (auto: metered to middle grey, as generate
+//   --exposure), "exposure_ev": -30..30 stops (0), "tone": none | aces | hable (none),
+//   "sensor_noise": true | false (false).
 #include <nlohmann/json.hpp>
 
 #include <set>
@@ -23,6 +26,16 @@ const std::set<std::string>& lensKeys();
 /// The lens keys of `body` as generate's LensSettings, checked (a setting the lens does not
 /// use, values out of range, 4 or 5 distortion coefficients).
 LensSettings parseLensKeys(const nlohmann::json& body);
+
+/// The keys parseResponseKeys reads.
+const std::set<std::string>& responseKeys();
+
+/// The camera response of a request: generate's ResponseSettings and --exposure.
+struct ResponseKeys {
+  ResponseSettings response;
+  std::string exposure = "auto";  ///< auto | fixed
+};
+ResponseKeys parseResponseKeys(const nlohmann::json& body);
 
 /// The lens for an image of K's size: pinhole and thin lens with K as given; a fisheye's image
 /// must be square and a panorama's 2:1 (the key "height" named), their focal length follows from

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <vector>
 
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "render/renderer.h"
 #include "scene/nyu40.h"
+#include "studio/camera_keys.h"
 #include "studio/json_fields.h"
 
 namespace inet::studio {
@@ -31,22 +31,24 @@ Pass parsePreviewPass(const std::string& name) {
   throw InputError("", "pass", "unknown pass '" + name + "' (rgb, depth, normal, label, albedo)");
 }
 
-/// Linear RGB scaled so that the median luminance of the pixels with light is 0.18, sRGB.
-ImageU8 meteredSrgb(const ImageF& rgb) {
-  std::vector<float> lum;
-  lum.reserve(rgb.pixelCount());
-  for (size_t i = 0; i < rgb.pixelCount(); ++i) {
-    const float* p = &rgb.data[i * 3];
-    const float y = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
-    if (y > 0 && std::isfinite(y)) lum.push_back(y);
-  }
-  ImageF scaled = rgb;
-  if (!lum.empty()) {
-    std::nth_element(lum.begin(), lum.begin() + lum.size() / 2, lum.end());
-    const float scale = 0.18f / lum[lum.size() / 2];
-    for (float& v : scaled.data) v *= scale;
-  }
-  return encodeSrgb8(scaled);
+/// The exposure multiplier the sequence's auto exposure would choose if this frame were its
+/// whole preview (pipeline/sequence_job.cpp, meterPreview): the log-average luminance of 2x2
+/// blocks to middle grey (0.18), in third stops, within +-8 stops.
+float meteredScale(const ImageF& rgb) {
+  auto lum = [&](int x, int y) {
+    return luminance(Eigen::Vector3f(rgb.at(x, y, 0), rgb.at(x, y, 1), rgb.at(x, y, 2)));
+  };
+  double log_sum = 0.0;
+  size_t blocks = 0;
+  for (int y = 0; y + 1 < rgb.height; y += 2)
+    for (int x = 0; x + 1 < rgb.width; x += 2) {
+      const double block = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1));
+      log_sum += std::log(1e-4 + std::max(0.0, std::isfinite(block) ? block : 0.0));
+      ++blocks;
+    }
+  const double log_average = std::exp(log_sum / static_cast<double>(std::max<size_t>(blocks, 1)));
+  const double ev = std::clamp(std::round(3.0 * std::log2(0.18 / log_average)) / 3.0, -8.0, 8.0);
+  return static_cast<float>(std::exp2(ev));
 }
 
 ImageU8 depthGrey(const ImageF& depth) {
@@ -80,7 +82,11 @@ ImageU8 labelColours(const ImageU8& label) {
 }  // namespace
 
 FramePreviewRequest parseFramePreview(const json& body) {
-  checkKeys(body, {"position", "quaternion_xyzw", "width", "height", "fx", "spp", "pass"});
+  std::set<std::string> keys = {"position", "quaternion_xyzw", "width", "height", "fx", "spp",
+                                "pass"};
+  keys.insert(lensKeys().begin(), lensKeys().end());
+  keys.insert(responseKeys().begin(), responseKeys().end());
+  checkKeys(body, keys);
   FramePreviewRequest r;
   r.T_world_camera.t = vec3(body, "position");
   const json& q = body.value("quaternion_xyzw", json());
@@ -95,9 +101,15 @@ FramePreviewRequest parseFramePreview(const json& body) {
   const int h = integerIn(body, "height", 120, 16, 1024);
   const double fx = number(body, "fx", 150.0);
   if (!(fx > 0 && fx <= 100000)) throw InputError("", "fx", "must be in (0, 100000]");
-  r.K = CameraIntrinsics::centred(w, h, fx);
+  r.lens = lensModelOf(parseLensKeys(body), CameraIntrinsics::centred(w, h, fx));
+  const ResponseKeys response = parseResponseKeys(body);
+  r.response = response.response;
+  r.auto_exposure = response.exposure == "auto";
   r.spp = integerIn(body, "spp", 4, 1, 64);
   r.pass = parsePreviewPass(text(body, "pass", "rgb"));
+  // a fisheye or panorama has no z-depth: its depth is the ray distance (docs/cameras.md)
+  if (r.pass == Pass::DepthZ && groundTruthDepthKind(r.lens.type) == DepthKind::RayDistance)
+    r.pass = Pass::DepthRay;
   return r;
 }
 
@@ -121,14 +133,17 @@ std::string FramePreviewer::png(const FramePreviewRequest& req) {
     opt.spp = req.spp;
     opt.passes = bit(Pass::Rgb);
     opt.denoise = true;  // a few samples per pixel: the edge-aware filter makes them readable
-    r.render(req.K, req.T_world_camera, opt, 0, frame);
-    image = meteredSrgb(frame.rgb);
+    r.render(req.lens, req.T_world_camera, opt, 0, frame);
+    ResponseSettings response = req.response;
+    if (req.auto_exposure) response.exposure_scale = meteredScale(frame.rgb);
+    image = encodeSrgb8(response.apply(frame.rgb, 0, 0));
   } else {
-    r.renderGroundTruth(req.K, req.T_world_camera, bit(req.pass), frame);
-    image = req.pass == Pass::DepthZ   ? depthGrey(frame.depth_z)
-            : req.pass == Pass::Normal ? normalColours(frame.normal)
-            : req.pass == Pass::Label  ? labelColours(frame.label)
-                                       : encodeSrgb8(frame.albedo);
+    r.renderGroundTruth(req.lens, req.T_world_camera, bit(req.pass), frame);
+    image = req.pass == Pass::DepthZ     ? depthGrey(frame.depth_z)
+            : req.pass == Pass::DepthRay ? depthGrey(frame.depth_ray)
+            : req.pass == Pass::Normal   ? normalColours(frame.normal)
+            : req.pass == Pass::Label    ? labelColours(frame.label)
+                                         : encodeSrgb8(frame.albedo);
   }
   fs::path file;
   {

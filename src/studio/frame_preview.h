@@ -7,12 +7,19 @@
 // Request: {"position": [x, y, z], "quaternion_xyzw": [x, y, z, w]   (a pose of the path:
 //           T_world_camera, OpenCV camera axes),
 //           "width": 16..1024 (160), "height": 16..1024 (120), "fx": pixels (150; fy = fx,
-//           principal point at the centre), "spp": 1..64 (4, rgb only),
-//           "pass": rgb | depth | normal | label | albedo (rgb)}
-// Images: rgb denoised (the renderer's edge-aware filter), metered (the median luminance of lit
-// pixels to 0.18) and sRGB-encoded; depth the z-depth as grey, near white, 0 where nothing was hit;
-// normal (n + 1) / 2 in the camera frame's colours as written by the dataset; label the NYU40 class
-// colours; albedo sRGB.
+//           principal point at the centre; pinhole and thin lens), "spp": 1..64 (4, rgb only),
+//           "pass": rgb | depth | normal | label | albedo (rgb),
+//           the sequence's lens and camera response (studio/camera_keys.h: "lens",
+//           "aperture_m", "focus_m", "fisheye_fov_deg", "distortion"; "exposure", "exposure_ev",
+//           "tone", "sensor_noise")}
+// Every pass goes through the lens (ground truth along its chief rays, as the sequence's).
+// Images: rgb denoised (the renderer's edge-aware filter), exposed as the sequence would be
+// (auto: this frame metered by the sequence's rule, its log-average luminance to middle grey in
+// third stops; fixed: radiance 1 is white), then exposure_ev, sensor noise and the tone curve
+// (ResponseSettings::apply), sRGB-encoded; depth the sequence's depth (z-depth; the ray
+// distance for a fisheye or panorama) as grey, near white, 0 where nothing was hit (outside a
+// fisheye's circle); normal (n + 1) / 2 in the camera frame's colours as written by the
+// dataset; label the NYU40 class colours; albedo sRGB.
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -20,7 +27,9 @@
 #include <mutex>
 #include <string>
 
+#include "pipeline/settings.h"
 #include "render/camera.h"
+#include "render/lens.h"
 #include "render/passes.h"
 #include "studio/studio_layout.h"
 
@@ -32,7 +41,9 @@ namespace inet::studio {
 
 struct FramePreviewRequest {
   Pose T_world_camera;
-  CameraIntrinsics K = CameraIntrinsics::centred(160, 120, 150);
+  LensModel lens = LensModel::pinhole(CameraIntrinsics::centred(160, 120, 150));
+  ResponseSettings response;
+  bool auto_exposure = true;
   int spp = 4;
   Pass pass = Pass::Rgb;
 };

@@ -75,9 +75,12 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
 
 SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layout,
                                      const fs::path& out) {
-  checkDesignKeys(body, {"width", "height", "fx", "spp", "sequence", "lens", "stereo",
-                         "exposure_ms", "readout_ms", "imu_rate", "passes", "config", "aperture_m",
-                         "focus_m", "fisheye_fov_deg", "distortion", "formats"});
+  std::set<std::string> keys = {"width",    "height", "fx",          "spp",
+                                "sequence", "stereo", "exposure_ms", "readout_ms",
+                                "imu_rate", "passes", "config",      "formats"};
+  keys.insert(lensKeys().begin(), lensKeys().end());
+  keys.insert(responseKeys().begin(), responseKeys().end());
+  checkDesignKeys(body, keys);
   SequenceRequest r;
   r.design = parseDesignRequest(body);
   SequenceJob& job = r.job;
@@ -94,6 +97,9 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   job.lens = parseLensKeys(body);
   const LensType lens = job.lens.type();
   lensModelOf(job.lens, CameraIntrinsics::centred(job.K.width, job.K.height, job.K.fx));
+  const ResponseKeys response = parseResponseKeys(body);
+  job.response = response.response;
+  job.exposure = response.exposure;
   job.formats = text(body, "formats", job.formats);
   try {
     const std::vector<std::string> formats = parseFormatList(job.formats);

@@ -1,5 +1,6 @@
 // The studio's design routes in-process: the floor plan, the layout's glTF, keyframed paths with
 // their free-space warnings, trajectory export and sequence jobs, and their one-line errors.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -229,6 +230,8 @@ TEST_F(StudioDesignTest, BadRequestsNameTheKey) {
       {"/api/jobs/sequence", "lens", "orthographic"},
       {"/api/jobs/sequence", "aperture_m", 0.01},  // a pinhole has no aperture
       {"/api/jobs/sequence", "stereo", -0.1},
+      {"/api/jobs/sequence", "tone", "sepia"},
+      {"/api/jobs/sequence", "exposure", "manual"},
       {"/api/jobs/sequence", "imu_rate", 0.5}};
   for (const auto& [route, key, value] : bad) {
     req = twoKeyframes();
@@ -369,6 +372,93 @@ TEST_F(StudioDesignTest, FramePreviewPasses) {
   expectError(
       post("/api/preview/frame", {{"position", {1, 1, 1}}, {"quaternion_xyzw", {0, 0, 0, 2}}}),
       "quaternion_xyzw");
+}
+
+TEST_F(StudioDesignTest, FramePreviewThroughTheLens) {
+  const json pose = jsonOf(post("/api/design/path", twoKeyframes()))["poses"][0];
+  int serial = 0;
+  // the preview of the first pose with these keys, as an image
+  auto preview = [&](const json& keys) {
+    json req = {{"position", pose["position"]},
+                {"quaternion_xyzw", pose["quaternion_xyzw"]},
+                {"width", 40},
+                {"height", 30},
+                {"fx", 40},
+                {"spp", 2}};
+    req.update(keys);
+    auto r = post("/api/preview/frame", req);
+    EXPECT_TRUE(r && r->status == 200) << req.dump() << ": " << (r ? r->body : "no answer");
+    const fs::path file = folders.tmp / fmt::format("lens_{}.png", ++serial);
+    std::ofstream(file, std::ios::binary) << (r ? r->body : "");
+    return readPng8(file);
+  };
+  auto differing = [](const ImageU8& a, const ImageU8& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.data.size(); ++i) n += a.data[i] != b.data[i];
+    return n;
+  };
+  auto mean = [](const ImageU8& a) {
+    double sum = 0;
+    for (uint8_t v : a.data) sum += v;
+    return sum / static_cast<double>(a.data.size());
+  };
+  // a 180-degree fisheye sees nothing outside its image circle (a corner), a pinhole does; its
+  // depth is the ray distance (farther than the z-depth off the axis)
+  const ImageU8 pinhole = preview({{"pass", "depth"}, {"width", 40}, {"height", 40}});
+  const ImageU8 fisheye =
+      preview({{"pass", "depth"}, {"width", 40}, {"height", 40}, {"lens", "fisheye"}});
+  ASSERT_EQ(fisheye.width, 40);
+  ASSERT_EQ(fisheye.height, 40);
+  EXPECT_GT(pinhole.at(0, 0, 0), 0);
+  EXPECT_EQ(fisheye.at(0, 0, 0), 0);
+  EXPECT_GT(fisheye.at(20, 20, 0), 0);
+  const ImageU8 panorama =
+      preview({{"pass", "label"}, {"width", 64}, {"height", 32}, {"lens", "panorama"}});
+  EXPECT_EQ(panorama.width, 64);
+  // barrel distortion moves the outer pixels, not the centre
+  const ImageU8 straight = preview({{"pass", "normal"}});
+  const ImageU8 barrel = preview({{"pass", "normal"}, {"distortion", {-0.3, 0.05, 0, 0}}});
+  EXPECT_GT(differing(straight, barrel), 30u);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(straight.at(20, 15, c), barrel.at(20, 15, c));
+  // a thin lens's ground truth follows its chief rays: the pinhole's labels, while its colour
+  // is defocused
+  const json thin = {{"lens", "thin_lens"}, {"aperture_m", 0.05}, {"focus_m", 0.5}};
+  json label = thin;
+  label["pass"] = "label";
+  EXPECT_EQ(differing(preview({{"pass", "label"}}), preview(label)), 0u);
+  json rgb = thin;
+  rgb.update({{"pass", "rgb"}, {"exposure", "fixed"}});
+  EXPECT_GT(differing(preview({{"pass", "rgb"}, {"exposure", "fixed"}}), preview(rgb)), 100u);
+  // the camera response: two stops brighter, a tone curve, auto exposure
+  const ImageU8 fixed0 = preview({{"pass", "rgb"}, {"exposure", "fixed"}});
+  const ImageU8 fixed2 = preview({{"pass", "rgb"}, {"exposure", "fixed"}, {"exposure_ev", 2}});
+  EXPECT_GT(mean(fixed2), mean(fixed0) + 10) << mean(fixed0) << " " << mean(fixed2);
+  const ImageU8 aces =
+      preview({{"pass", "rgb"}, {"exposure", "fixed"}, {"exposure_ev", 2}, {"tone", "aces"}});
+  EXPECT_GT(differing(fixed2, aces), 100u);
+  const ImageU8 automatic = preview({{"pass", "rgb"}});
+  EXPECT_GT(mean(automatic), 20);
+  EXPECT_LT(mean(automatic), 235);
+  // bad keys: 400 naming the key
+  const json at = {{"position", pose["position"]}, {"quaternion_xyzw", pose["quaternion_xyzw"]}};
+  const std::vector<std::pair<json, std::string>> bad = {
+      {{{"lens", "fisheye"}, {"width", 40}, {"height", 30}}, "height"},
+      {{{"lens", "fisheye"}, {"width", 40}, {"height", 40}, {"distortion", {0.1, 0, 0, 0}}},
+       "distortion"},
+      {{{"distortion", {-0.9, 0, 0, 0}}}, "distortion"},
+      {{{"lens", "orthographic"}}, "lens"},
+      {{{"aperture_m", 0.01}}, "aperture_m"},
+      {{{"tone", "sepia"}}, "tone"},
+      {{{"exposure", "manual"}}, "exposure"},
+      {{{"exposure_ev", 40}}, "exposure_ev"},
+      {{{"sensor_noise", "yes"}}, "sensor_noise"}};
+  for (const auto& [keys, key] : bad) {
+    json req = at;
+    req.update(keys);
+    auto r = post("/api/preview/frame", req);
+    expectError(r, key);
+    EXPECT_EQ(r->body.find("--"), std::string::npos) << r->body;
+  }
 }
 
 TEST_F(StudioDesignTest, ImuAlongThePath) {

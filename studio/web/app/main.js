@@ -35,9 +35,11 @@ const design = new Design({
     updateImu(r);
   },
 });
+// the frame preview renders through the sequence's lens and camera response
 const frame = new FramePreview({ slider: $('frame-slider'), pass: $('frame-pass'),
   img: $('frame-img'), info: $('frame-info'),
-  camera: () => ({ fx: num('fx'), width: num('width'), height: num('height'), spp: num('spp') }) });
+  camera: () => ({ fx: num('fx'), width: num('width'), height: num('height'), spp: num('spp'),
+    keys: { ...lensRequest(), ...responseRequest() } }) });
 const planView = new PlanView($('plan'), (xy, look) => design.add(xy, look),
   (i, xy, look) => design.move(i, xy, look));
 
@@ -140,10 +142,17 @@ function lensRequest() {
   return request;
 }
 
+/// The camera response keys of the camera panel (studio/camera_keys.h).
+function responseRequest() {
+  return { exposure: $('auto-exposure').value, exposure_ev: num('exposure-ev'),
+    tone: $('tone').value, sensor_noise: $('sensor-noise').checked };
+}
+
 async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
-    height: num('height'), spp: num('spp'), ...lensRequest(), stereo: num('stereo'),
+    height: num('height'), spp: num('spp'), ...lensRequest(), ...responseRequest(),
+    stereo: num('stereo'),
     exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate'),
     config: $('config').value, formats: $('formats').value };
   showJob('starting…', 'pending');
@@ -209,6 +218,8 @@ function wire() {
     if (design.result) view.play(design.result.poses, num('fx'), num('height'));
   });
   $('fps').addEventListener('change', () => design.update());
+  // any camera setting changes the frame preview
+  for (const type of ['input', 'change']) $('camera').addEventListener(type, () => frame.schedule());
 }
 
 async function start() {

@@ -1,6 +1,7 @@
 // The frame preview: a slider over the path's poses and a pass; the server renders that frame
-// (POST /api/preview/frame: ground truth at once, the colour at a few samples per pixel) and
-// the image appears beside the slider. At most 320 pixels wide (fx scaled with the image);
+// (POST /api/preview/frame: ground truth at once, the colour at a few samples per pixel,
+// through the sequence's lens and camera response) and the image appears beside the slider.
+// At most 320 pixels wide (fx scaled with the image; a fisheye's stays square, a panorama's 2:1);
 // a newer request wins over one still on its way. #frame-img's data-state says "ready" with
 // data-version when the image shown is the latest.
 import { post } from './api.js';
@@ -38,9 +39,13 @@ export class FramePreview {
     }
     const c = this.camera();
     const s = Math.min(1, 320 / c.width);
+    const width = Math.max(16, Math.round(c.width * s));
+    // scaled, a fisheye's or panorama's image keeps its shape (the server checks it)
+    const shape = { fisheye: 1, panorama: 2 }[c.keys.lens];
+    const height = shape && c.width === shape * c.height ? Math.round(width / shape)
+      : Math.max(16, Math.round(c.height * s));
     const request = { position: pose.position, quaternion_xyzw: pose.quaternion_xyzw,
-      width: Math.max(16, Math.round(c.width * s)), height: Math.max(16, Math.round(c.height * s)),
-      fx: c.fx * s, spp: Math.min(16, c.spp), pass: this.pass.value };
+      width, height, fx: c.fx * s, spp: Math.min(16, c.spp), pass: this.pass.value, ...c.keys };
     this.img.dataset.state = 'loading';
     const t0 = performance.now();
     try {
@@ -52,7 +57,7 @@ export class FramePreview {
       if (old) URL.revokeObjectURL(old);
       this.info.textContent = `frame ${i + 1} of ${this.poses.length}, t = ` +
         `${(pose.t_ns * 1e-9).toFixed(2)} s, ${request.pass} ${request.width} x ` +
-        `${request.height} in ${(performance.now() - t0).toFixed(0)} ms`;
+        `${request.height}, ${request.lens} in ${(performance.now() - t0).toFixed(0)} ms`;
       this.img.dataset.state = 'ready';
     } catch (err) {
       if (version !== this.version) return;

@@ -223,7 +223,33 @@ try {
     check(shown.state === 'ready' && shown.w === 64 && shown.h === 48,
       `${pass} preview ${shown.w} x ${shown.h}: ${shown.info}`);
   }
+  // through the sequence's lens: a 180-degree fisheye sees nothing outside its image circle
+  await frameReady(async () => {
+    await page.fill('#width', '48');
+    await page.fill('#height', '48');
+    await page.selectOption('#frame-pass', 'depth');
+  });
+  await frameReady(() => page.selectOption('#lens', 'fisheye'));
+  const fish = await page.evaluate(() => {
+    const img = document.getElementById('frame-img');
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth;
+    c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const at = (x, y) => g.getImageData(x, y, 1, 1).data[0];
+    return { w: c.width, h: c.height, corner: at(0, 0), centre: at(24, 24),
+      info: document.getElementById('frame-info').textContent };
+  });
+  check(fish.w === 48 && fish.h === 48 && fish.corner === 0 && fish.centre > 0,
+    `fisheye depth preview: corner ${fish.corner}, centre ${fish.centre} (${fish.info})`);
   await page.locator('#panel').screenshot({ path: join(shots, 'studio_7_frame.png') });
+  await frameReady(() => page.selectOption('#lens', 'pinhole'));
+  await frameReady(async () => {
+    await page.fill('#width', '64');
+    await page.fill('#height', '48');
+    await page.selectOption('#frame-pass', 'rgb');
+  });
 
   step('export TUM and EuRoC');
   const exported = {};
