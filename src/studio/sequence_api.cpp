@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "dataset/format_writer.h"
+#include "pipeline/sensor_outputs.h"
 #include "render/lens.h"
 #include "studio/camera_keys.h"
 #include "studio/json_fields.h"
@@ -20,6 +21,38 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+/// The event camera's keys: generate's flags (apps/common.cpp, addEventFlags) as flagToKey
+/// names them.
+const std::set<std::string>& eventKeys() {
+  static const std::set<std::string> keys = {
+      "event_width",    "event_height",  "event_spp",         "contrast",
+      "contrast_pos",   "contrast_neg",  "threshold_spread",  "leak_rate_hz",
+      "contrast_sigma", "refractory_ms", "shot_noise_rate_hz"};
+  return keys;
+}
+
+/// The event keys of `body` over generate's defaults, checked as generate checks its flags.
+EventSettings parseEventKeys(const json& body) {
+  EventSettings e;
+  e.opt.width = integerIn(body, "event_width", e.opt.width, 1, 65535);
+  e.opt.height = integerIn(body, "event_height", e.opt.height, 1, 65535);
+  e.opt.spp = integerIn(body, "event_spp", e.opt.spp, 1, 65536);
+  e.contrast = number(body, "contrast", e.contrast);
+  e.contrast_pos = number(body, "contrast_pos", e.contrast_pos);
+  e.contrast_neg = number(body, "contrast_neg", e.contrast_neg);
+  e.opt.sim.threshold_spread = number(body, "threshold_spread", e.opt.sim.threshold_spread);
+  e.opt.sim.leak_rate_hz = number(body, "leak_rate_hz", e.opt.sim.leak_rate_hz);
+  e.opt.sim.sigma_c = number(body, "contrast_sigma", e.opt.sim.sigma_c);
+  e.refractory_ms = number(body, "refractory_ms", e.refractory_ms);
+  e.opt.sim.shot_noise_rate_hz = number(body, "shot_noise_rate_hz", e.opt.sim.shot_noise_rate_hz);
+  try {
+    e.options(0);
+  } catch (const InputError& error) {
+    throw asRequestError(error);
+  }
+  return e;
+}
 
 /// The first studio_NNN with no folder under `parent`.
 std::string freeSequenceName(const fs::path& parent) {
@@ -80,6 +113,8 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
                                 "imu_rate", "passes", "config",      "formats"};
   keys.insert(lensKeys().begin(), lensKeys().end());
   keys.insert(responseKeys().begin(), responseKeys().end());
+  keys.insert(eventKeys().begin(), eventKeys().end());
+  keys.insert("imu_noise");
   checkDesignKeys(body, keys);
   SequenceRequest r;
   r.design = parseDesignRequest(body);
@@ -125,7 +160,27 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   job.imu_rate = number(body, "imu_rate", job.imu_rate);
   if (!(job.imu_rate == 0 || (job.imu_rate >= 1 && job.imu_rate <= 100000)))
     throw InputError("", "imu_rate", "must be 0 (no IMU) or in 1..100000 Hz");
+  // IMU noise as generate --imu-noise, but no yaml file: the studio reads no file it was not
+  // given
+  job.imu_noise = text(body, "imu_noise", job.imu_noise);
+  if (job.imu_noise != "none" && job.imu_noise != "euroc")
+    throw InputError("", "imu_noise",
+                     "must be none or euroc (ADIS16448), not '" + job.imu_noise +
+                         "' (a Kalibr imu yaml is read by interiornet generate only)");
   job.passes = text(body, "passes", job.passes);
+  // the passes as the pipeline reads them, at once; the event camera's settings only with
+  // its pass, as a lens's settings only with that lens
+  SequencePasses passes;
+  try {
+    passes = parseSequencePasses(job.passes, lens, job.readout_ms > 0);
+  } catch (const InputError& e) {
+    throw asRequestError(e);
+  }
+  job.events = parseEventKeys(body);
+  if (!passes.events)
+    for (const std::string& key : eventKeys())
+      if (body.contains(key))
+        throw InputError("", key, "only used with the events pass (passes \"default,events\")");
   job.config = text(body, "config", job.config);  // original, lighting:N, rearranged:N, ...
   job.out = out.string();
   job.progress = false;

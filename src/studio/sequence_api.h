@@ -10,7 +10,11 @@
 //    "distortion": [k1, k2, p1, p2(, k3)]) and the camera response ("exposure": auto | fixed,
 //    "exposure_ev", "tone", "sensor_noise"), "stereo": baseline 0..10 m (0 = mono),
 //    "exposure_ms", "readout_ms" (rolling shutter): 0..1000, "imu_rate": 0 (none) or Hz (800),
-//    "passes": as generate --passes ("default"),
+//    "imu_noise": none | euroc (euroc), "passes": as generate --passes ("default"; checked at
+//    once), the event camera (with the events pass only; generate's flags as keys):
+//    "event_width", "event_height", "event_spp", "contrast", "contrast_pos", "contrast_neg",
+//    "threshold_spread", "leak_rate_hz", "contrast_sigma", "refractory_ms",
+//    "shot_noise_rate_hz",
 //    "config": as generate --config ("original"; lighting:N, rearranged:N, comma lists),
 //    "formats": as generate --format ("asl,tum"; a k3 needs formats without asl)}
 // The lens is made at once for the image size (a fisheye's square image, a panorama's 2:1, a

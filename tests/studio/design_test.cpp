@@ -579,15 +579,70 @@ TEST_F(StudioDesignTest, SequenceJobSensors) {
   EXPECT_TRUE(fs::is_directory(dir / "cam1" / "data"));  // the stereo camera
   EXPECT_FALSE(fs::exists(dir / "imu0"));                // imu_rate 0
   EXPECT_FALSE(fs::exists(dir / "normal0"));             // passes rgb,depth
-  // the pipeline's own check, named by the request's key: depth_noisy needs a pinhole
+  // the passes are read as the pipeline reads them, at once: depth_noisy needs a pinhole
   req.update(
       {{"lens", "fisheye"}, {"width", 32}, {"sequence", "fisheye"}, {"passes", "rgb,depth_noisy"}});
   req["height"] = 32;
-  const json f = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
-  ASSERT_EQ(f["state"], "failed") << f.dump();
-  const std::string msg = f["error"]["error"];
-  EXPECT_EQ(msg.find("--"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("pinhole"), std::string::npos) << msg;
+  auto r = post("/api/jobs/sequence", req);
+  expectError(r, "passes");
+  EXPECT_EQ(r->body.find("--"), std::string::npos) << r->body;
+  EXPECT_NE(r->body.find("pinhole"), std::string::npos) << r->body;
+}
+
+TEST_F(StudioDesignTest, SequenceJobEventsAndImuNoise) {
+  json req = twoKeyframes();
+  req["keyframes"][1]["t"] = 0.2;
+  req["fps"] = 5;  // 2 frames, 0.2 s
+  req.update({{"width", 32},
+              {"height", 24},
+              {"fx", 30},
+              {"spp", 1},
+              {"imu_rate", 200},
+              {"imu_noise", "none"},
+              {"passes", "rgb,depth,imu,events"},
+              {"event_width", 16},
+              {"event_height", 12},
+              {"event_spp", 1},
+              {"contrast", 0.3},
+              {"refractory_ms", 0.5},
+              {"sequence", "events"}});
+  auto c = clientOf(*server);
+  const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
+  ASSERT_EQ(s["state"], "done") << s.dump();
+  const fs::path dir = s["result"]["dir"].get<std::string>();
+  // the event camera's settings and the noise-free IMU reach the sequence
+  std::ifstream in(dir / "meta.json");
+  const json meta = json::parse(in);
+  const std::string events = meta.value("events", "");
+  EXPECT_NE(events.find("0.3"), std::string::npos) << meta.dump();
+  EXPECT_TRUE(fs::is_directory(dir / "events0")) << dir;
+  std::ifstream yaml_in(dir / "imu0" / "sensor.yaml");
+  std::stringstream yaml;
+  yaml << yaml_in.rdbuf();
+  EXPECT_NE(yaml.str().find("gyroscope_noise_density: 0 "), std::string::npos) << yaml.str();
+  // bad values and keys: 400 naming the key
+  const std::vector<std::pair<json, std::string>> bad = {
+      {{{"event_width", 0}}, "event_width"},
+      {{{"event_spp", 1.5}}, "event_spp"},
+      {{{"contrast", 50}}, "contrast"},
+      {{{"contrast_pos", 0.001}}, "contrast_pos"},
+      {{{"contrast_sigma", -1}}, "contrast_sigma"},
+      {{{"refractory_ms", 2000}}, "refractory_ms"},
+      {{{"leak_rate_hz", -1}}, "leak_rate_hz"},
+      {{{"passes", "rgb"}, {"event_width", 16}}, "event_width"},  // no events pass
+      {{{"passes", "rgb,events"}, {"lens", "fisheye"}, {"width", 32}, {"height", 32}}, "passes"},
+      {{{"imu_noise", "loud"}}, "imu_noise"},
+      {{{"imu_noise", "/etc/passwd"}}, "imu_noise"}};
+  for (const auto& [keys, key] : bad) {
+    json one = req;
+    for (const char* k : {"event_width", "event_height", "event_spp", "contrast", "refractory_ms"})
+      one.erase(k);
+    one["sequence"] = "bad";
+    one.update(keys);
+    auto r = post("/api/jobs/sequence", one);
+    expectError(r, key);
+    EXPECT_EQ(r->body.find("--"), std::string::npos) << r->body;
+  }
 }
 
 TEST_F(StudioDesignTest, SequenceJobDistortion) {

@@ -52,7 +52,8 @@ async function updateImu(r) {
   let imu = null;
   if (r && r.frames >= 2) {
     try {
-      imu = await postJson('/api/design/imu', { ...design.request(), imu_rate: 100 });
+      imu = await postJson('/api/design/imu', { ...design.request(), imu_rate: 100,
+        noise: $('imu-noise').value });
     } catch (err) {
       imu = null;
     }
@@ -148,13 +149,26 @@ function responseRequest() {
     tone: $('tone').value, sensor_noise: $('sensor-noise').checked };
 }
 
+/// The sensors of the camera panel: the IMU's noise, and the event camera with its pass and
+/// settings when it is on (generate's flags as keys; the server refuses them without it).
+function sensorsRequest() {
+  const request = { imu_noise: $('imu-noise').value };
+  if (!$('events-on').checked) return request;
+  return { ...request, passes: 'default,events', event_width: num('event-width'),
+    event_height: num('event-height'), event_spp: num('event-spp'),
+    contrast_pos: num('contrast-pos'), contrast_neg: num('contrast-neg'),
+    contrast_sigma: num('contrast-sigma'), threshold_spread: num('threshold-spread'),
+    refractory_ms: num('refractory'), leak_rate_hz: num('leak-rate'),
+    shot_noise_rate_hz: num('shot-noise-rate') };
+}
+
 async function generate() {
   if (design.keyframes.length === 0) return showJob('place keyframes first', 'failed');
   const request = { ...design.request(), fx: num('fx'), width: num('width'),
     height: num('height'), spp: num('spp'), ...lensRequest(), ...responseRequest(),
     stereo: num('stereo'),
     exposure_ms: num('exposure'), readout_ms: num('readout'), imu_rate: num('imu-rate'),
-    config: $('config').value, formats: $('formats').value };
+    ...sensorsRequest(), config: $('config').value, formats: $('formats').value };
   showJob('starting…', 'pending');
   try {
     const job = await postJson('/api/jobs/sequence', request);
@@ -218,6 +232,7 @@ function wire() {
     if (design.result) view.play(design.result.poses, num('fx'), num('height'));
   });
   $('fps').addEventListener('change', () => design.update());
+  $('imu-noise').addEventListener('change', () => updateImu(design.result));
   // any camera setting changes the frame preview
   for (const type of ['input', 'change']) $('camera').addEventListener(type, () => frame.schedule());
 }
