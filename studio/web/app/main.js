@@ -18,8 +18,10 @@ function setStatus(text, state) {
   $('status').dataset.state = state;
 }
 
-// a double click in 3D adds a keyframe above the point hit, as a click on the plan does
-const view = new View3D($('view3d'), (x, y) => design.add([x, y], null));
+// a double click in 3D adds a keyframe above the point hit, as a click on the plan does, and
+// dragging a keyframe's marker moves or aims it, as on the plan
+const view = new View3D($('view3d'), (x, y) => design.add([x, y], null),
+  (i, xy, look) => design.move(i, xy, look));
 let plan = null;
 const design = new Design({
   table: $('keyframes'), info: $('path-info'), warnings: $('warnings'),

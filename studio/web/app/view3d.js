@@ -1,7 +1,8 @@
 // The 3D view: the layout as our glTF export (GET /api/layout.glb) with orbit navigation
 // (OrbitControls), walking (W A S D / arrows move the eye and the orbit centre together), the
-// designed path and keyframes, keyframes added by a double click on the floor, and playback of
-// the path as its camera sees it.
+// designed path and keyframes, keyframes added by a double click on the floor and dragged by
+// their markers (level, at their own height; with Shift held, aimed), and playback of the path
+// as its camera sees it.
 //
 // Frames: the glTF's root node turns our Z-up world into three.js's Y-up one; `world` below
 // does the same, so the path and keyframes are given in our coordinates. A pose T_world_camera
@@ -16,6 +17,7 @@ import { MeshoptSimplifier } from 'meshoptimizer';
 const kOpenCvToGl = new THREE.Matrix4().makeScale(1, -1, -1);
 const kZupToYup = new THREE.Matrix4().makeRotationX(-Math.PI / 2);
 const kCoarseError = 0.05;  ///< metres: how far the coarse copy may stray (buildCoarse)
+const kGrabPx = 12;  ///< CSS pixels: how close to a keyframe's marker a press grabs it
 
 /// The visible meshes of `root` merged into one mesh per material, in world coordinates: a
 /// 10-room apartment has some 850 meshes, and each draw call costs (most of all in software
@@ -43,9 +45,14 @@ function mergeByMaterial(root) {
 }
 
 export class View3D {
-  /// onPick(x, y) is called with the world point a double click hits (our coordinates).
-  constructor(container, onPick = () => {}) {
+  /// onPick(x, y) is called with the world point a double click hits (our coordinates);
+  /// onMove(index, position_xy or null, look_xy or null) when a keyframe's marker is dragged
+  /// (moved; with Shift held, aimed at where the drag ends), as the plan's onMove.
+  constructor(container, onPick = () => {}, onMove = () => {}) {
     this.onPick = onPick;
+    this.onMove = onMove;
+    this.markers = [];  // the keyframes' balls, in the order of the keyframes
+    this.drag = null;
     this.container = container;
     // no MSAA: software GL (SwiftShader, headless Chromium) pays for every sample
     this.renderer = new THREE.WebGLRenderer({ antialias: false });
@@ -74,6 +81,79 @@ export class View3D {
     this.resize();
     this.installWalkKeys();
     this.renderer.domElement.addEventListener('dblclick', (e) => this.pick(e));
+    this.installMarkerDrag();
+  }
+
+  /// Dragging a keyframe's marker: a press within kGrabPx of one (the nearest) takes the
+  /// pointer before OrbitControls sees it (a capturing listener on the container), the marker
+  /// follows the pointer on the level plane at the keyframe's height, and the release moves the
+  /// keyframe there (onMove), or with Shift held aims it there.
+  installMarkerDrag() {
+    const el = this.renderer.domElement;
+    const local = (e) => {
+      const r = el.getBoundingClientRect();
+      return [e.clientX - r.left, e.clientY - r.top];
+    };
+    this.container.addEventListener('pointerdown', (e) => {
+      if (e.button !== 0 || this.playing) return;
+      const i = this.markerAt(...local(e));
+      if (i < 0) return;
+      e.stopPropagation();
+      e.preventDefault();
+      el.setPointerCapture(e.pointerId);
+      this.controls.enabled = false;
+      const ball = this.markers[i];
+      this.drag = { index: i, from: ball.position.clone(), to: null };
+    }, { capture: true });
+    el.addEventListener('pointermove', (e) => {
+      if (!this.drag) {
+        el.style.cursor = this.markerAt(...local(e)) >= 0 ? 'grab' : '';
+        return;
+      }
+      const p = this.levelPoint(...local(e), this.drag.from.z);
+      if (!p) return;
+      this.drag.to = p;
+      if (!e.shiftKey) this.markers[this.drag.index].position.set(p[0], p[1], this.drag.from.z);
+      this.requestRender();
+    });
+    const end = (e) => {
+      const d = this.drag;
+      if (!d) return;
+      this.drag = null;
+      this.controls.enabled = true;
+      if (el.hasPointerCapture(e.pointerId)) el.releasePointerCapture(e.pointerId);
+      if (!d.to) return;
+      if (e.shiftKey) this.onMove(d.index, null, d.to);
+      else this.onMove(d.index, d.to, null);
+    };
+    el.addEventListener('pointerup', end);
+    el.addEventListener('pointercancel', end);
+  }
+
+  /// The index of the keyframe marker nearest to view point (u, v) (CSS pixels) within
+  /// kGrabPx and in front of the camera, else -1.
+  markerAt(u, v) {
+    let best = -1, best_d = kGrabPx;
+    this.markers.forEach((ball, i) => {
+      const p = ball.position;
+      const v3 = new THREE.Vector3(p.x, p.z, -p.y).project(this.camera);
+      if (v3.z > 1) return;  // behind the camera
+      const [su, sv] = this.screenPoint([p.x, p.y, p.z]);
+      const d = Math.hypot(su - u, sv - v);
+      if (d < best_d) { best_d = d; best = i; }
+    });
+    return best;
+  }
+
+  /// Where the view ray through (u, v) (CSS pixels) meets the level plane at height z (our
+  /// coordinates): [x, y], or null when it does not (looking away from it).
+  levelPoint(u, v, z) {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(new THREE.Vector2(u / r.width * 2 - 1, -(v / r.height) * 2 + 1), this.camera);
+    const hit = ray.ray.intersectPlane(new THREE.Plane(new THREE.Vector3(0, 1, 0), -z),
+      new THREE.Vector3());
+    return hit ? [hit.x, -hit.z] : null;
   }
 
   /// A double click: the first surface of the model under the pointer (floor, furniture top),
@@ -213,12 +293,16 @@ export class View3D {
       g.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
       this.overlay.add(new THREE.Line(g, new THREE.LineBasicMaterial({ vertexColors: true })));
     }
+    this.markers = [];
     keyframes.forEach((k, i) => {
       const ok = free[i] !== false;
+      // drawn over the model, so that a keyframe behind a wall can still be seen and dragged
       const ball = new THREE.Mesh(new THREE.SphereGeometry(0.08, 16, 8),
-        new THREE.MeshBasicMaterial({ color: ok ? 0x2060e0 : 0xe02020 }));
+        new THREE.MeshBasicMaterial({ color: ok ? 0x2060e0 : 0xe02020, depthTest: false }));
+      ball.renderOrder = 1;
       ball.position.set(...k.position);
       this.overlay.add(ball);
+      this.markers.push(ball);
       const look = new THREE.BufferGeometry().setFromPoints(
         [new THREE.Vector3(...k.position), new THREE.Vector3(...k.look_at)]);
       this.overlay.add(new THREE.Line(look, new THREE.LineBasicMaterial({ color: 0x208040 })));

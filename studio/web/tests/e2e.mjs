@@ -187,6 +187,48 @@ try {
   check(picked && Math.hypot(picked.position[0] - target[0], picked.position[1] - target[1]) < 0.1,
     `the keyframe stands where the floor was clicked (${JSON.stringify(picked && picked.position)} ~ ${JSON.stringify(target)})`);
   await pathReady(() => page.locator('#keyframes tbody tr').nth(4).locator('button').click());
+
+  step('drag a keyframe in 3D');
+  // keyframe 3's marker 0.3 m along x, level: it moves and looks the same way; with Shift the
+  // 2nd's is aimed at a point 1 m beside it; both back again
+  const onView = async (p) => {
+    const [u, v] = await page.evaluate((q) => window.studio.view.screenPoint(q), p);
+    return [canvas3d.x + u, canvas3d.y + v];
+  };
+  const drag3d = async (from, to, shift = false) => {
+    const [fx, fy] = await onView(from);
+    const [tx, ty] = await onView(to);
+    await pathReady(async () => {
+      if (shift) await page.keyboard.down('Shift');
+      await page.mouse.move(fx, fy);
+      await page.mouse.down();
+      await page.mouse.move(tx, ty, { steps: 5 });
+      await page.mouse.up();
+      if (shift) await page.keyboard.up('Shift');
+    });
+  };
+  const kf = () => page.evaluate(() => JSON.parse(JSON.stringify(window.studio.design.keyframes)));
+  const before3d = await kf();
+  const eye3d = await eye();
+  const p3 = before3d[2].position;
+  await drag3d(p3, [p3[0] + 0.3, p3[1], p3[2]]);
+  const after3d = await kf();
+  const d3 = [0, 1, 2].map((k) => after3d[2].position[k] - p3[k]);
+  check(Math.abs(d3[0] - 0.3) < 0.03 && Math.abs(d3[1]) < 0.03 && d3[2] === 0 &&
+    Math.abs(after3d[2].look_at[0] - before3d[2].look_at[0] - d3[0]) < 1e-6,
+  `a marker dragged in 3D moves its keyframe level (${JSON.stringify(p3)} -> ${JSON.stringify(after3d[2].position)})`);
+  const eye_after = await eye();
+  check(eye_after.every((v, k) => v === eye3d[k]), 'the view did not orbit while dragging');
+  await drag3d(after3d[2].position, p3);
+  const p2 = before3d[1].position;
+  await drag3d(p2, [p2[0], p2[1] + 1, p2[2]], true);
+  const aimed = (await kf())[1];
+  check(JSON.stringify(aimed.position) === JSON.stringify(p2) &&
+    Math.hypot(aimed.look_at[0] - p2[0], aimed.look_at[1] - p2[1] - 1) < 0.05,
+  `with Shift it aims the keyframe instead (looks at ${JSON.stringify(aimed.look_at)})`);
+  await pathReady(() => page.evaluate((k) => window.studio.design.move(1, null, k.look_at.slice(0, 2)),
+    before3d[1]));
+  await page.screenshot({ path: join(shots, 'studio_8_drag3d.png') });
   const plotted = await page.evaluate(() => {
     const c = document.getElementById('plot');
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
