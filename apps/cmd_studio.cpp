@@ -2,8 +2,8 @@
 // binary (src/studio/). This file only parses options.
 #include <csignal>
 #include <cstdio>
-#include <random>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -72,8 +72,9 @@ void runStudio(StudioArgs a) {
   if (!a.opt.allow_remote)
     std::printf(
         "studio: from another machine: ssh -L %d:localhost:%d THIS_HOST, then open "
-        "http://localhost:%d/%s\n",
-        server.port(), server.port(), server.port(), query.c_str());
+        "%s://localhost:%d/%s\n",
+        server.port(), server.port(), a.opt.tls_cert.empty() ? "http" : "https", server.port(),
+        query.c_str());
   std::fflush(stdout);  // a script or test reads the port from a pipe
   const int sig = server.runUntilStopSignal();
   std::printf("studio: stopped by %s\n", sig == SIGINT    ? "SIGINT"
@@ -96,9 +97,10 @@ void registerStudio(CLI::App& app) {
       "opening it:\n"
       "  laptop$ ssh -L 8080:localhost:8080 node   # then, on node: interiornet studio\n"
       "  and open http://localhost:8080/ in the laptop's browser.\n"
-      "--allow-remote serves other machines directly: the studio has no login and no "
-      "encryption, so anyone who reaches the port and has the token can read the --data "
-      "folders and start jobs. Other users of a shared machine can reach its loopback too: the "
+      "--allow-remote serves other machines directly: the studio has no login, so anyone who "
+      "reaches the port and has the token can read the --data folders and start jobs; without "
+      "--tls-cert/--tls-key it has no encryption either (the token crosses the network in "
+      "clear). Other users of a shared machine can reach its loopback too: the "
       "access token (printed in the URL, kept by the browser as a cookie) keeps them out.");
   auto a = std::make_shared<StudioArgs>();
   addSceneFlags(*cmd, a->scene,
@@ -129,6 +131,11 @@ void registerStudio(CLI::App& app) {
   cmd->add_option("--token", a->opt.token,
                   "the access token every request must carry (16..128 letters, digits, - and "
                   "_); default: a random one, in the URL printed");
+  cmd->add_option("--tls-cert", a->opt.tls_cert,
+                  "serve HTTPS with this PEM certificate (chain); needs --tls-key. For "
+                  "--allow-remote: the token and the data then cross the network encrypted");
+  cmd->add_option("--tls-key", a->opt.tls_key,
+                  "the certificate's PEM private key (unencrypted; keep it readable by you only)");
   cmd->add_flag("--no-token", a->no_token,
                 "no access token: anyone who can reach the port (every user of this machine) "
                 "can use the studio");

@@ -51,15 +51,27 @@ fs::path defaultWebRoot() {
 
 namespace {
 
-/// httplib's server with its listening socket visible, to report the address bound.
-class HttpServer : public httplib::Server {
+/// The listening socket of an httplib server, plain or TLS.
+class ServerSocket {
  public:
-  int listeningSocket() const { return svr_sock_; }
+  virtual ~ServerSocket() = default;
+  /// The socket bound, to report its address; -1 when there is none.
+  virtual int listeningSocket() const = 0;
   /// Closes a socket that was bound but never served (httplib's stop() only stops a running
   /// server).
-  void closeUnserved() {
-    if (is_running()) return;
-    const int fd = svr_sock_.exchange(-1);
+  virtual void closeUnserved() = 0;
+};
+
+/// httplib's server (httplib::Server, or httplib::SSLServer for HTTPS) with its listening
+/// socket visible.
+template <class Base>
+class HttpServer final : public Base, public ServerSocket {
+ public:
+  using Base::Base;
+  int listeningSocket() const override { return this->svr_sock_; }
+  void closeUnserved() override {
+    if (this->is_running()) return;
+    const int fd = this->svr_sock_.exchange(-1);
     if (fd >= 0) ::close(fd);
   }
 };
@@ -243,7 +255,8 @@ struct StudioServer::Impl {
   std::shared_ptr<const StudioLayout> layout;
   fs::path web_root;                      ///< canonical
   std::map<std::string, fs::path> roots;  ///< canonical
-  HttpServer http;
+  std::unique_ptr<httplib::Server> http;
+  ServerSocket* socket = nullptr;  ///< http's
   std::vector<Route> routes;
   std::unique_ptr<JobQueue> jobs;
   std::unique_ptr<LayoutGlb> glb;
@@ -255,6 +268,7 @@ struct StudioServer::Impl {
   const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 
   void checkOptions();
+  void makeHttp();
   bool checkToken(const httplib::Request& req, httplib::Response& res) const;
   void bind();
   void addRoutes();
@@ -325,11 +339,36 @@ void StudioServer::Impl::checkOptions() {
   }
 }
 
+/// A plain HTTP server, or HTTPS with the certificate and key of tls_cert and tls_key
+/// (both or neither: InputError naming the flag; one that httplib cannot load: the same).
+void StudioServer::Impl::makeHttp() {
+  if (opt.tls_cert.empty() != opt.tls_key.empty())
+    throw InputError("", opt.tls_cert.empty() ? "--tls-cert" : "--tls-key",
+                     "HTTPS needs both --tls-cert and --tls-key");
+  if (opt.tls_cert.empty()) {
+    auto plain = std::make_unique<HttpServer<httplib::Server>>();
+    socket = plain.get();
+    http = std::move(plain);
+    return;
+  }
+  for (const auto& [file, flag] :
+       {std::pair{opt.tls_cert, "--tls-cert"}, {opt.tls_key, "--tls-key"}})
+    if (!fs::is_regular_file(file)) throw InputError(file.string(), flag, "no such file");
+  auto tls =
+      std::make_unique<HttpServer<httplib::SSLServer>>(opt.tls_cert.c_str(), opt.tls_key.c_str());
+  if (!tls->is_valid())
+    throw InputError(opt.tls_cert.string(), "--tls-cert",
+                     "cannot use it with --tls-key " + opt.tls_key.string() +
+                         " (PEM certificate and its unencrypted PEM private key)");
+  socket = tls.get();
+  http = std::move(tls);
+}
+
 void StudioServer::Impl::bind() {
   if (opt.port == 0) {
-    port = http.bind_to_any_port(opt.host);
+    port = http->bind_to_any_port(opt.host);
     if (port <= 0) port = 0;
-  } else if (http.bind_to_port(opt.host, opt.port)) {
+  } else if (http->bind_to_port(opt.host, opt.port)) {
     port = opt.port;
   }
   if (port == 0)
@@ -339,19 +378,26 @@ void StudioServer::Impl::bind() {
                                  opt.host, opt.port));
   // httplib listens with a backlog of 5: a burst of connections (a page loading its assets, or
   // 50 clients at once) overflows it and the kernel drops some. listen() again sets a new one.
-  ::listen(http.listeningSocket(), SOMAXCONN);
+  ::listen(socket->listeningSocket(), SOMAXCONN);
   // the kernel's word on what was bound, whatever the name resolved to
-  const std::string text = socketAddress(http.listeningSocket());
+  const std::string text = socketAddress(socket->listeningSocket());
   if (!opt.allow_remote && !isLoopbackLiteral(text)) {
-    http.closeUnserved();
+    socket->closeUnserved();
     throw InputError("", "--host",
                      fmt::format("'{}' bound {}, not a loopback address", opt.host, text));
   }
-  if (opt.allow_remote && !isLoopbackLiteral(text))
+  if (opt.allow_remote && !isLoopbackLiteral(text) && opt.tls_cert.empty())
     std::fprintf(stderr,
                  "warning: studio: listening on %s port %d, reachable from other machines: the "
-                 "studio has no login and no encryption, and anyone who reaches the port can read "
-                 "the data folders and start jobs (an SSH tunnel keeps it private: see --help)\n",
+                 "studio has no login and no encryption (the token crosses the network in clear), "
+                 "and anyone who reaches the port can read the data folders and start jobs (an "
+                 "SSH tunnel keeps it private, or --tls-cert/--tls-key encrypt it: see --help)\n",
+                 text.c_str(), port);
+  else if (opt.allow_remote && !isLoopbackLiteral(text))
+    std::fprintf(stderr,
+                 "warning: studio: listening on %s port %d (HTTPS), reachable from other "
+                 "machines: the access token is the only key; anyone who has it can read the "
+                 "data folders and start jobs\n",
                  text.c_str(), port);
 }
 
@@ -475,8 +521,9 @@ void StudioServer::Impl::previewFrame(const std::string& body, httplib::Response
 }
 
 /// GET /api/jobs/<id>/events: the job's status as server-sent events, one event each time it
-/// changes state, progress or message (checked every 50 ms), a comment every second otherwise, until it has finished. Each
-/// stream holds an HTTP worker, so at most a quarter of them stream at once (503 beyond).
+/// changes state, progress or message (checked every 50 ms), a comment every second otherwise,
+/// until it has finished. Each stream holds an HTTP worker, so at most a quarter of them stream at
+/// once (503 beyond).
 void StudioServer::Impl::jobEvents(const std::string& id, httplib::Response& res) {
   if (!jobs->status(id)) return sendError(res, 404, fmt::format("no job '{}'", oneLine(id)));
   const int max_streams = std::max(1, opt.threads / 4);
@@ -583,7 +630,7 @@ bool StudioServer::Impl::checkToken(const httplib::Request& req, httplib::Respon
   if (opt.token.empty()) return true;
   const std::string auth = req.get_header_value("Authorization");
   const bool query = req.has_param("token");
-  const std::string given = query                          ? req.get_param_value("token")
+  const std::string given = query                           ? req.get_param_value("token")
                             : auth.rfind("Bearer ", 0) == 0 ? auth.substr(7)
                                                             : cookieValue(req, "inet_studio_token");
   if (!sameSecret(given, opt.token)) {
@@ -595,8 +642,10 @@ bool StudioServer::Impl::checkToken(const httplib::Request& req, httplib::Respon
     return false;
   }
   if (!query) return true;
-  res.set_header("Set-Cookie",
-                 "inet_studio_token=" + opt.token + "; Path=/; HttpOnly; SameSite=Strict");
+  // over HTTPS the browser sends the cookie back over HTTPS only
+  res.set_header("Set-Cookie", "inet_studio_token=" + opt.token +
+                                   "; Path=/; HttpOnly; SameSite=Strict" +
+                                   (opt.tls_cert.empty() ? "" : "; Secure"));
   const std::string raw = rawPath(req);
   if (req.method == "GET" && raw.rfind("/api/", 0) != 0) {  // keep the token out of the history
     res.set_redirect(raw, 303);
@@ -654,31 +703,33 @@ void StudioServer::Impl::dispatch(const httplib::Request& req, const std::string
 
 void StudioServer::Impl::configureHttp() {
   const int threads = opt.threads;
-  http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
-  http.set_payload_max_length(opt.max_body_bytes);
+  http->new_task_queue = [threads] {
+    return new httplib::ThreadPool(static_cast<size_t>(threads));
+  };
+  http->set_payload_max_length(opt.max_body_bytes);
   // httplib's default sets SO_REUSEPORT, which lets a second server bind the same port and
   // share its connections; SO_REUSEADDR only allows a restart over TIME_WAIT
-  http.set_socket_options([](int sock) {
+  http->set_socket_options([](int sock) {
     int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
-  http.set_read_timeout(10, 0);
-  http.set_write_timeout(10, 0);
-  http.set_keep_alive_timeout(5);
-  http.set_default_headers({{"X-Content-Type-Options", "nosniff"},
-                            {"X-Frame-Options", "DENY"},
-                            {"Referrer-Policy", "no-referrer"},
-                            {"Cache-Control", "no-store"},
-                            {"Content-Security-Policy",
-                             "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; "
-                             "connect-src 'self' blob:; img-src 'self' data: blob:; "
-                             "style-src 'self' 'unsafe-inline'; frame-ancestors 'none'; "
-                             "base-uri 'none'; form-action 'self'"}});
+  http->set_read_timeout(10, 0);
+  http->set_write_timeout(10, 0);
+  http->set_keep_alive_timeout(5);
+  http->set_default_headers({{"X-Content-Type-Options", "nosniff"},
+                             {"X-Frame-Options", "DENY"},
+                             {"Referrer-Policy", "no-referrer"},
+                             {"Cache-Control", "no-store"},
+                             {"Content-Security-Policy",
+                              "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; "
+                              "connect-src 'self' blob:; img-src 'self' data: blob:; "
+                              "style-src 'self' 'unsafe-inline'; frame-ancestors 'none'; "
+                              "base-uri 'none'; form-action 'self'"}});
 }
 
 void StudioServer::Impl::installHandlers() {
   using HR = httplib::Server::HandlerResponse;
-  http.set_pre_routing_handler(refuseBeforeReading);
+  http->set_pre_routing_handler(refuseBeforeReading);
   // every route goes through dispatch(), once the body is read (and size-checked)
   const char* any = "[\\s\\S]*";  // '.' would not match a decoded newline
   const httplib::Server::Handler plain =
@@ -698,13 +749,13 @@ void StudioServer::Impl::installHandlers() {
             return dispatch(req, body, res);
         }
       };
-  http.Get(any, plain);
-  http.Options(any, plain);
-  http.Post(any, plain).Post(any, reading);
-  http.Put(any, plain).Put(any, reading);
-  http.Patch(any, plain).Patch(any, reading);
-  http.Delete(any, plain).Delete(any, reading);
-  http.set_error_handler(httplib::Server::HandlerWithResponse(
+  http->Get(any, plain);
+  http->Options(any, plain);
+  http->Post(any, plain).Post(any, reading);
+  http->Put(any, plain).Put(any, reading);
+  http->Patch(any, plain).Patch(any, reading);
+  http->Delete(any, plain).Delete(any, reading);
+  http->set_error_handler(httplib::Server::HandlerWithResponse(
       [this](const httplib::Request&, httplib::Response& res) -> HR {
         if (!res.body.empty()) return HR::Unhandled;  // one of ours, already JSON
         sendError(res, res.status,
@@ -713,7 +764,7 @@ void StudioServer::Impl::installHandlers() {
                       : fmt::format("HTTP {}: the request was refused", res.status));
         return HR::Handled;
       }));
-  http.set_exception_handler(
+  http->set_exception_handler(
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
         std::string what = "unknown exception";
         try {
@@ -725,7 +776,7 @@ void StudioServer::Impl::installHandlers() {
         sendError(res, 500, "internal error: " + what);
       });
   if (opt.log_requests)
-    http.set_logger([](const httplib::Request& req, const httplib::Response& res) {
+    http->set_logger([](const httplib::Request& req, const httplib::Response& res) {
       std::fprintf(stderr, "studio: %s %s %d\n", req.method.c_str(),
                    oneLine(redactToken(req.target)).c_str(), res.status);
     });
@@ -737,6 +788,7 @@ StudioServer::StudioServer(StudioOptions opt, std::shared_ptr<const StudioLayout
   impl_->opt = std::move(opt);
   impl_->layout = std::move(layout);
   impl_->checkOptions();
+  impl_->makeHttp();
   const int slots = impl_->opt.compute_slots > 0
                         ? impl_->opt.compute_slots
                         : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -760,14 +812,15 @@ int StudioServer::port() const {
 }
 
 std::string StudioServer::boundAddress() const {
-  return socketAddress(impl_->http.listeningSocket());
+  return socketAddress(impl_->socket->listeningSocket());
 }
 
 std::string StudioServer::url() const {
   const std::string host = impl_->opt.host.find(':') != std::string::npos
                                ? "[" + impl_->opt.host + "]"
                                : impl_->opt.host;
-  return fmt::format("http://{}:{}/", host, impl_->port);
+  return fmt::format("{}://{}:{}/", impl_->opt.tls_cert.empty() ? "http" : "https", host,
+                     impl_->port);
 }
 
 std::string StudioServer::openUrl() const {
@@ -776,16 +829,16 @@ std::string StudioServer::openUrl() const {
 
 void StudioServer::start() {
   if (impl_->listener.joinable() || impl_->stopped) return;
-  impl_->listener = std::thread([this] { impl_->http.listen_after_bind(); });
+  impl_->listener = std::thread([this] { impl_->http->listen_after_bind(); });
   // stop() only stops a server that runs: wait until httplib says it does
-  while (!impl_->http.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  while (!impl_->http->is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 void StudioServer::stop() {
   if (impl_->stopped.exchange(true)) return;
-  impl_->http.stop();
+  impl_->http->stop();
   if (impl_->listener.joinable()) impl_->listener.join();
-  impl_->http.closeUnserved();
+  impl_->socket->closeUnserved();
   impl_->jobs->shutdown();
 }
 

@@ -25,15 +25,15 @@
 //   POST /api/preview/frame          one frame's pass or low-spp colour as PNG
 //                                    (studio/frame_preview.h)
 // Errors are JSON {"error": one line, "file", "field"} with 400 (bad input: the command line's
-// one-line messages), 401 (no or a wrong access token), 403 (a refused path or Host), 404, 405 (with Allow), 409 (cancelling a
-// finished job), 411 (chunked
-// bodies), 413 (body over max_body_bytes), 415 (POST without application/json), 503 (job store
-// full), 500 (a bug).
+// one-line messages), 401 (no or a wrong access token), 403 (a refused path or Host), 404, 405
+// (with Allow), 409 (cancelling a finished job), 411 (chunked bodies), 413 (body over
+// max_body_bytes), 415 (POST without application/json), 503 (job store full), 500 (a bug).
 //
-// Security rules: with a token (the command line makes one unless told not to), every request
-// carries it: `Authorization: Bearer TOKEN`, or the cookie inet_studio_token (HttpOnly,
-// SameSite=Strict) set when a request brings ?token=TOKEN (a page request is then redirected
-// to the same path without it); compared in constant time. Loopback by default (binding elsewhere needs allow_remote and warns); without
+// Security rules: HTTPS when given a certificate and key (tls_cert, tls_key). With a token (the
+// command line makes one unless told not to), every request carries it: `Authorization: Bearer
+// TOKEN`, or the cookie inet_studio_token (HttpOnly, SameSite=Strict) set when a request brings
+// ?token=TOKEN (a page request is then redirected to the same path without it); compared in
+// constant time. Loopback by default (binding elsewhere needs allow_remote and warns); without
 // allow_remote only Host headers naming the loopback are answered (DNS rebinding); files only
 // below the web root and the data roots (studio/safe_path.h); POST bodies must be JSON (so a
 // cross-site form cannot post, and a cross-site fetch needs a CORS preflight, which is refused);
@@ -74,6 +74,9 @@ struct StudioOptions {
   /// Also serve out_dir read-only as the data root "out" (made if missing), so the page can
   /// show what the jobs wrote (the command line does; a "--data out=..." of its own wins).
   bool serve_out = false;
+  /// HTTPS: a PEM certificate (chain) and its unencrypted PEM private key, both or neither
+  /// (Debian's cpp-httplib is built with OpenSSL). The token cookie is then Secure.
+  std::filesystem::path tls_cert, tls_key;
 };
 
 /// The studio's page: $INET_STUDIO_WEB, else the bundle the build made (<build>/studio/web),
@@ -96,7 +99,7 @@ class StudioServer {
   int port() const;
   /// The address the socket is bound to, as the kernel reports it ("127.0.0.1").
   std::string boundAddress() const;
-  /// "http://HOST:PORT/" (IPv6 hosts in brackets).
+  /// "http://HOST:PORT/" ("https://" with TLS; IPv6 hosts in brackets).
   std::string url() const;
   /// The URL to open: url() with "?token=TOKEN" when there is a token.
   std::string openUrl() const;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <filesystem>
 #include <thread>
 
 #include "core/error.h"
@@ -320,6 +322,81 @@ TEST(StudioServerBind, BadOptionsAreInputErrors) {
   StudioServer first(o, test::roomLayout());
   o.port = first.port();
   EXPECT_THROW(StudioServer(o, test::roomLayout()), InputError);
+}
+
+/// A self-signed certificate for 127.0.0.1 and localhost and its key (PEM), made by the
+/// openssl command; false when it cannot be run.
+bool makeCertificate(const std::filesystem::path& cert, const std::filesystem::path& key) {
+  const std::string cmd =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=localhost -addext "
+      "subjectAltName=IP:127.0.0.1,DNS:localhost -keyout '" +
+      key.string() + "' -out '" + cert.string() + "' >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0 && std::filesystem::is_regular_file(cert);
+}
+
+TEST(StudioServerTls, HttpsOnLoopback) {
+  test::StudioFolders folders;
+  const auto cert = folders.tmp / "cert.pem", key = folders.tmp / "key.pem";
+  if (!makeCertificate(cert, key)) GTEST_SKIP() << "no openssl command to make a certificate";
+  StudioOptions o = folders.options();
+  o.tls_cert = cert;
+  o.tls_key = key;
+  o.token = "0123456789abcdef-token";
+  StudioServer server(o, test::roomLayout());
+  server.start();
+  EXPECT_EQ(server.url(), "https://127.0.0.1:" + std::to_string(server.port()) + "/");
+  // a client that trusts this certificate alone, and checks the host name against it
+  httplib::SSLClient tls("127.0.0.1", server.port());
+  tls.set_ca_cert_path(cert.c_str());
+  tls.enable_server_certificate_verification(true);
+  auto r = tls.Get("/api/health", {{"Authorization", "Bearer 0123456789abcdef-token"}});
+  ASSERT_TRUE(r) << httplib::to_string(r.error());
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(jsonOf(r)["status"], "ok");
+  test::expectJsonError(tls.Get("/api/health"), 401, "token");
+  // the printed URL sets a cookie the browser returns over HTTPS only
+  r = tls.Get("/?token=0123456789abcdef-token");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 303);
+  EXPECT_EQ(r->get_header_value("Set-Cookie"),
+            "inet_studio_token=0123456789abcdef-token; Path=/; HttpOnly; SameSite=Strict; Secure");
+  r = tls.Post("/api/design/path", {{"Authorization", "Bearer 0123456789abcdef-token"}},
+               R"({"keyframes": [{"t": 0, "position": [2.5, 1, 1.5], "look_at": [3.5, 1, 1.5]},
+                   {"t": 1, "position": [3.3, 1, 1.5], "look_at": [3.3, 2, 1.5]}], "fps": 10})",
+               "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(jsonOf(r)["frames"], 11);
+  // plain HTTP to the HTTPS port gets no HTTP answer
+  auto plain = clientOf(server);
+  plain.set_read_timeout(5, 0);
+  auto p = plain.Get("/api/health", {{"Authorization", "Bearer 0123456789abcdef-token"}});
+  EXPECT_FALSE(p && p->status == 200);
+  // a client with the system's certificate authorities refuses this self-signed certificate
+  httplib::SSLClient strict("127.0.0.1", server.port());
+  strict.enable_server_certificate_verification(true);
+  EXPECT_FALSE(strict.Get("/api/health"));
+}
+
+TEST(StudioServerTls, BadCertificatesAreInputErrors) {
+  test::StudioFolders folders;
+  StudioOptions o = folders.options();
+  auto field = [&](const StudioOptions& opt) {
+    try {
+      StudioServer server(opt, test::roomLayout());
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("none");
+  };
+  o.tls_cert = folders.tmp / "web/index.html";
+  EXPECT_EQ(field(o), "--tls-key");  // a certificate without its key
+  o.tls_key = folders.tmp / "nope.pem";
+  EXPECT_EQ(field(o), "--tls-key");  // a key that does not exist
+  o.tls_key = folders.tmp / "web/app.js";
+  EXPECT_EQ(field(o), "--tls-cert");  // files that are no certificate and key
+  o.tls_cert.clear();
+  EXPECT_EQ(field(o), "--tls-cert");
 }
 
 }  // namespace

@@ -201,6 +201,11 @@ TEST(StudioCli, RefusesANonLoopbackHostWithOneLine) {
   const RunResult d = runInterinet("studio --layout builtin:room --port 0 --data nonsense");
   EXPECT_EQ(d.exit_code, 2);
   EXPECT_NE(d.err.find("error: --data: 'nonsense' is not NAME=DIR"), std::string::npos) << d.err;
+  const RunResult t = runInterinet("studio --layout builtin:room --port 0 --tls-cert cert.pem");
+  EXPECT_EQ(t.exit_code, 2);
+  EXPECT_NE(t.err.find("error: --tls-key: HTTPS needs both --tls-cert and --tls-key"),
+            std::string::npos)
+      << t.err;
 }
 
 TEST(StudioCli, HelpExplainsTheTunnel) {
@@ -209,6 +214,7 @@ TEST(StudioCli, HelpExplainsTheTunnel) {
   EXPECT_NE(r.out.find("ssh -L 8080:localhost:8080"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--allow-remote"), std::string::npos);
   EXPECT_NE(r.out.find("--port"), std::string::npos);
+  EXPECT_NE(r.out.find("--tls-cert"), std::string::npos);
 }
 
 }  // namespace

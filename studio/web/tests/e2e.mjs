@@ -2,9 +2,11 @@
 // driven by playwright-core, against the real `interiornet studio` binary.
 //   node e2e.mjs --binary build/apps/interiornet --work DIR [--screenshots DIR]
 // Steps: load a layout; place 4 keyframes by clicking the plan (one by dragging, to set where
-// it looks); place a 5th inside furniture and see the warning; change fx and the frame rate;
-// export TUM and EuRoC and check that `interiornet generate` renders them with the same poses;
-// start a sequence job and see it finish. A screenshot per step (docs/images/studio_*.png when
+// it looks); place a 5th inside furniture and see the warning; drag keyframes in 3D; change fx
+// and the frame rate; preview frames (through a fisheye too); export TUM and EuRoC and check
+// that `interiornet generate` renders them with the same poses; distortion, IMU noise and an
+// event camera refused and accepted; start a sequence job and see it finish; cancel one; a
+// random trajectory as keyframes; the page over HTTPS. A screenshot per step (docs/images/studio_*.png when
 // --screenshots is docs/images). Exit 0 passed, 1 failed, 77 skipped (no chromium or npm
 // packages).
 import { existsSync, mkdirSync, readFileSync, readdirSync, rmSync } from 'node:fs';
@@ -58,6 +60,34 @@ function pickCells(plan, count) {
     chosen.push(best);
   }
   return { free: chosen.map(([i, j]) => world(i, j)), furniture };
+}
+
+/// The page over HTTPS: a second studio with a self-signed certificate for 127.0.0.1
+/// (--tls-cert, --tls-key), loaded in a browser context told to accept it.
+async function checkHttps(browser) {
+  step('the page over HTTPS (--tls-cert, --tls-key; a self-signed certificate)');
+  const cert = join(opt.work, 'cert.pem'), key = join(opt.work, 'key.pem');
+  const made = await run('openssl', ['req', '-x509', '-newkey', 'rsa:2048', '-nodes', '-days', '2',
+    '-subj', '/CN=localhost', '-addext', 'subjectAltName=IP:127.0.0.1,DNS:localhost',
+    '-keyout', key, '-out', cert]);
+  if (made.code !== 0) return console.log(`(no openssl command: the HTTPS check is skipped) ${made.out}`);
+  const tls = await startStudio(opt.binary, ['--layout', opt.layout, '--out', join(opt.work, 'out'),
+    '--tls-cert', cert, '--tls-key', key]);
+  try {
+    const context = await browser.newContext({ ignoreHTTPSErrors: true });
+    const page = await context.newPage();
+    const t_tls = Date.now();
+    await page.goto(tls.open_url);
+    await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 60000 });
+    const secure = await page.evaluate(() => window.isSecureContext && location.protocol);
+    check(tls.open_url.startsWith('https://') && secure === 'https:' &&
+      await page.getAttribute('#status', 'data-state') === 'ready',
+    `${tls.url}: ready over HTTPS in ${Date.now() - t_tls} ms (${await page.textContent('#status')})`);
+    await context.close();
+  } finally {
+    const code = await tls.stop();
+    check(code === 0, `the HTTPS studio stopped with exit ${code}`);
+  }
 }
 
 const studio = await startStudio(opt.binary, ['--layout', opt.layout, '--out', join(opt.work, 'out')]);
@@ -415,6 +445,7 @@ try {
   await page.evaluate(() => window.studio.view.stop());
 
   check(errors.length === 0, `no errors on the page or its console ${JSON.stringify(errors.slice(0, 3))}`);
+  await checkHttps(browser);
 } finally {
   await browser.close();
   const code = await studio.stop();

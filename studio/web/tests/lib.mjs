@@ -45,7 +45,7 @@ export function startStudio(binary, args) {
     proc.stderr.on('data', (d) => { err += d; });
     proc.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)(\?token=([\w-]+))? /);
+      const m = out.match(/serving (https?:\/\/127\.0\.0\.1:\d+\/)(\?token=([\w-]+))? /);
       if (!m) return;
       clearTimeout(timer);
       resolve({ url: m[1], open_url: m[1] + (m[2] || ''), token: m[3] || '', proc, started_ms: Date.now() - t0, stderr: () => err,
