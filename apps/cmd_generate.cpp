@@ -183,6 +183,11 @@ void registerGenerate(CLI::App& app) {
                   "noise level, default) or learned (a small U-Net trained on our own renders, "
                   "data/denoise/unet.bin; docs/denoise.md)")
       ->check(CLI::IsMember({"atrous", "learned"}));
+  cmd->add_option("--denoise-params", a->denoise_params,
+                  "the atrous filter's parameters over its defaults, key=value[,key=value]: "
+                  "iterations (levels, 1..10), sigma_color (luminance stop in noise standard "
+                  "deviations), sigma_normal, sigma_depth, sigma_albedo, albedo_epsilon, "
+                  "mean_levels (docs/denoise.md); e.g. iterations=4,sigma_color=3");
   cmd->add_flag("--save-denoiser-inputs", a->save_denoiser_inputs,
                 "also write what the learned denoiser reads for each frame (the colour after "
                 "temporal reuse, its variance, albedos, normal, depth, emission) as "

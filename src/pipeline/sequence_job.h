@@ -55,6 +55,8 @@ struct SequenceJob {
   bool light_cache = true;
   bool sun_photons = true;
   std::string denoiser = "atrous";    ///< atrous or learned (render/neural_denoise.h)
+  /// "key=value,..." over the à-trous filter's defaults (applyDenoiseParams); empty = defaults
+  std::string denoise_params;
   bool save_denoiser_inputs = false;  ///< denoise_in/<t>.exr per frame (training data)
   int temporal = 16;  ///< temporal reuse window in frames (1 = off); see temporalWindow()
   bool temporal_set = false;

@@ -8,8 +8,11 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "core/error.h"
 
@@ -413,6 +416,47 @@ std::string DenoiseOptions::describe() const {
   return s.str();
 }
 
+void applyDenoiseParams(const std::string& text, DenoiseOptions& o, const std::string& where,
+                        const std::string& field) {
+  const std::pair<const char*, float*> floats[] = {{"sigma_normal", &o.sigma_normal},
+                                                   {"sigma_depth", &o.sigma_depth},
+                                                   {"sigma_albedo", &o.sigma_albedo},
+                                                   {"sigma_color", &o.sigma_color},
+                                                   {"albedo_epsilon", &o.albedo_epsilon}};
+  const std::pair<const char*, int*> ints[] = {{"iterations", &o.iterations},
+                                               {"mean_levels", &o.mean_levels}};
+  for (size_t at = 0; !text.empty() && at <= text.size();) {
+    const size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    at = comma + 1;
+    const size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(v))
+      throw InputError(where, field, fmt::format("'{}' is not key=number", item));
+    bool known = false;
+    for (const auto& [name, target] : floats)
+      if (key == name) *target = static_cast<float>(v), known = true;
+    for (const auto& [name, target] : ints)
+      if (key == name) {
+        if (v != std::floor(v) || std::abs(v) > 1000)
+          throw InputError(where, field, fmt::format("{} must be an integer, not {}", key, value));
+        *target = static_cast<int>(v), known = true;
+      }
+    if (!known)
+      throw InputError(where, field,
+                       fmt::format("unknown key '{}' (iterations, mean_levels, sigma_normal, "
+                                   "sigma_depth, sigma_albedo, sigma_color, albedo_epsilon)",
+                                   key));
+  }
+  try {
+    validateDenoiseOptions(o, where);
+  } catch (const InputError& e) {
+    throw InputError(where, field, e.field() + ": " + e.problem());
+  }
+}
+
 void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
   if (o.iterations < 1 || o.iterations > 10)
     throw InputError(where, "denoise.iterations",
@@ -523,9 +567,11 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
   const Guide g = buildGuide(rgb, albedo, normal, depth, opt);
   Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
   if (!variance) estimateVariance(g, a, opt);
-  rejectFireflies(g, a);
-  // the input's surface mean, when the output keeps it
+  // the input's surface mean, when the output keeps it: taken before the fireflies go, whose
+  // light is real (the rare bright samples of a skewed estimate) and is then spread over the
+  // surface mean's width instead of lost
   const Signal in_mean = opt.mean_levels > 0 ? surfaceMean(g, a, opt.mean_levels, opt) : Signal(0);
+  rejectFireflies(g, a);
   Signal b(g.size());
   const float eps = opt.albedo_epsilon;
   auto remodulated = [&](const Signal& s) {

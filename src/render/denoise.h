@@ -66,6 +66,12 @@ struct DenoiseOptions {
   std::string describe() const;
 };
 
+/// Sets the fields named in `text`, "key=value[,key=value...]" with describe()'s keys (e.g.
+/// "iterations=4,sigma_color=3"), on top of `options`, then validates them. InputError(where,
+/// field, ...) for an unknown key, a value that is not a number, or a value out of range.
+void applyDenoiseParams(const std::string& text, DenoiseOptions& options, const std::string& where,
+                        const std::string& field);
+
 /// Throws InputError(where, "denoise.<field>", ...) if a parameter is out of range (iterations
 /// outside 1..10, a sigma not finite and > 0, albedo_epsilon not in (0, 1]).
 void validateDenoiseOptions(const DenoiseOptions& options, const std::string& where);
