@@ -620,7 +620,17 @@ void StudioServer::Impl::addRoutes() {
                     [this](const Call& c, auto& res) { previewFrame(c.body, res); }});
   routes.push_back({"POST", "/api/design/export", false,
                     [this](const Call& c, auto& res) { designExport(c.body, res); }});
-  get("/api/layout/plan", false, [this](auto&, auto& res) { sendJson(res, 200, layout->plan); });
+  // ?level=N: the plan of floor level N (default 0, the lowest)
+  get("/api/layout/plan", false, [this](const Call& c, auto& res) {
+    const std::string text = c.req.has_param("level") ? c.req.get_param_value("level") : "0";
+    const size_t n = layout->plans.size();
+    if (text.empty() || text.size() > 3 ||
+        text.find_first_not_of("0123456789") != std::string::npos || std::stoul(text) >= n)
+      return sendError(res, 400,
+                       fmt::format("level: must be in 0..{}, not '{}'", n - 1, oneLine(text)), "",
+                       "level");
+    sendJson(res, 200, layout->plans[std::stoul(text)]);
+  });
   get("/api/layout.glb", false, [this](auto&, auto& res) { sendFile(res, glb->path()); });
 }
 

@@ -16,7 +16,8 @@
 //   GET  /api/jobs/<id>/events       the same as server-sent events until it has finished
 //   DELETE /api/jobs/<id>            cancel: 200 (was pending), 202 (running: stops at its next
 //                                    safe point), 409 (finished), 404
-//   GET  /api/layout/plan            the floor plan raster (studio/floor_plan.h)
+//   GET  /api/layout/plan?level=N    the floor plan raster of floor level N (default 0;
+//                                    studio/floor_plan.h)
 //   GET  /api/layout.glb             the layout as binary glTF (studio/layout_glb.h)
 //   POST /api/design/path            keyframes -> the camera path and its warnings
 //   POST /api/design/export          keyframes -> a trajectory file (studio/design_api.h)

@@ -18,7 +18,7 @@ std::shared_ptr<const StudioLayout> loadStudioLayout(const SceneSource& src) {
   layout->scene = src.load();
   layout->space = std::make_unique<FreeSpace>(layout->scene, FreeSpaceOptions{}, layout->source);
   layout->summary = layoutSummary(layout->scene, layout->source, layout->space.get());
-  layout->plan = floorPlan(layout->scene, *layout->space);
+  layout->plans = floorPlans(layout->scene, *layout->space);
   layout->load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return layout;
 }

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "pipeline/settings.h"
 #include "scene/scene.h"
@@ -17,9 +18,9 @@ struct StudioLayout {
   SceneSource scene_source;  ///< how it was loaded (a sequence job loads it again the same way)
   Scene scene;
   std::unique_ptr<FreeSpace> space;
-  nlohmann::json summary;  ///< layoutSummary()
-  nlohmann::json plan;     ///< floorPlan() (studio/floor_plan.h)
-  double load_s = 0.0;     ///< loading the scene and building the free space took this long
+  nlohmann::json summary;             ///< layoutSummary()
+  std::vector<nlohmann::json> plans;  ///< floorPlans(): one per floor level (studio/floor_plan.h)
+  double load_s = 0.0;  ///< loading the scene and building the free space took this long
 };
 
 /// Loads `src` (SceneSource::load: the scene with its lights, as `layout show` reads it) and

@@ -10,10 +10,12 @@
 #include <thread>
 #include <tuple>
 
+#include "../box_mesh.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "scene/gltf_export.h"
 #include "studio/design_api.h"
+#include "studio/floor_plan.h"
 #include "studio/server.h"
 #include "studio_test_util.h"
 #include "trajectory/formats.h"
@@ -88,6 +90,72 @@ TEST_F(StudioDesignTest, FloorPlanCoversTheRoom) {
                       p["floor_z"].get<double>() + p["height_m"].get<double>());
         EXPECT_TRUE(space.hasClearance(at, p["clearance_m"])) << at.transpose();
       }
+}
+
+/// Two storeys of 8 x 6 m (floors at 0 and 2.9 m, a 0.2 m slab between), a 1 m cube of
+/// furniture on the ground floor at (2, 3) and one upstairs at (6, 3).
+std::shared_ptr<const StudioLayout> twoStoreys() {
+  Mesh m;
+  auto storey = [&m](double z0) {
+    const double w = 8, d = 6, h = 2.7, t = 0.2;
+    inet::test::appendBox(m, {w / 2, d / 2, z0 - t / 2}, {w + 2 * t, d + 2 * t, t});
+    inet::test::appendBox(m, {w / 2, d / 2, z0 + h + t / 2}, {w + 2 * t, d + 2 * t, t});
+    inet::test::appendBox(m, {-t / 2, d / 2, z0 + h / 2}, {t, d, h});
+    inet::test::appendBox(m, {w + t / 2, d / 2, z0 + h / 2}, {t, d, h});
+    inet::test::appendBox(m, {w / 2, d + t / 2, z0 + h / 2}, {w, t, h});
+    inet::test::appendBox(m, {w / 2, -t / 2, z0 + h / 2}, {w, t, h});
+  };
+  storey(0.0);
+  storey(2.9);
+  inet::test::appendBox(m, {2, 3, 0.5}, {1, 1, 1});
+  inet::test::appendBox(m, {6, 3, 3.4}, {1, 1, 1});
+  auto layout = std::make_shared<StudioLayout>();
+  Scene& s = layout->scene;
+  s.name = "two_storeys";
+  s.materials.push_back(Material{});
+  m.id = "storeys";
+  s.meshes.push_back(std::move(m));
+  s.objects.push_back(Object::make("storeys", 0, 0, Mat4::Identity(), 1, 1));
+  layout->source = "two storeys";
+  layout->space = std::make_unique<FreeSpace>(s);
+  layout->summary = layoutSummary(s, layout->source, layout->space.get());
+  layout->plans = floorPlans(s, *layout->space);
+  return layout;
+}
+
+TEST(StudioPlan, OnePlanPerStorey) {
+  test::StudioFolders folders;
+  StudioServer server(folders.options(), twoStoreys());
+  server.start();
+  auto c = clientOf(server);
+  // the plan's cell over (x, y)
+  auto at = [](const json& p, double x, double y) {
+    const int i = static_cast<int>(
+        std::lround((x - p["origin"][0].get<double>()) / p["cell_m"].get<double>()));
+    const int j = static_cast<int>(
+        std::lround((y - p["origin"][1].get<double>()) / p["cell_m"].get<double>()));
+    return p["rows"][j].get<std::string>()[i];
+  };
+  const json ground = jsonOf(c.Get("/api/layout/plan"));
+  ASSERT_EQ(ground["levels"].size(), 2u) << ground.dump().substr(0, 300);
+  EXPECT_EQ(ground["level"], 0);
+  EXPECT_NEAR(ground["floor_z"].get<double>(), 0.0, 0.05);
+  const json upper = jsonOf(c.Get("/api/layout/plan?level=1"));
+  ASSERT_TRUE(upper.contains("rows")) << upper.dump();
+  EXPECT_EQ(upper["level"], 1);
+  EXPECT_NEAR(upper["floor_z"].get<double>(), 2.9, 0.05);
+  EXPECT_EQ(upper["nx"], ground["nx"]);  // the same grid
+  EXPECT_EQ(upper["ny"], ground["ny"]);
+  // each storey shows its own furniture and the other's place as free floor
+  EXPECT_EQ(at(ground, 2, 3), 'f');
+  EXPECT_EQ(at(ground, 6, 3), '.');
+  EXPECT_EQ(at(upper, 2, 3), '.');
+  EXPECT_EQ(at(upper, 6, 3), 'f');
+  EXPECT_EQ(upper["tops"][0].get<std::string>().size(), upper["rows"][0].get<std::string>().size());
+  // the level named in the query: 0 and 1 only
+  for (const char* bad : {"2", "-1", "x", "", "1000"})
+    test::expectJsonError(c.Get((std::string("/api/layout/plan?level=") + bad).c_str()), 400,
+                          "level");
 }
 
 TEST_F(StudioDesignTest, LayoutGlbIsOurExport) {

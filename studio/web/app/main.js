@@ -239,18 +239,45 @@ function wire() {
   for (const type of ['input', 'change']) $('camera').addEventListener(type, () => frame.schedule());
 }
 
+let layoutInfo = null;  // GET /api/layout
+
+/// Where the 3D view cuts a storey of plan p: 2.4 m over its floor (a mesh scene's ceilings and
+/// roofs are not labelled, so they are not hidden), or 0.3 m under the next level's floor.
+function storeyCut(p) {
+  const above = p.levels[p.level + 1];
+  return Math.min(p.floor_z + 2.4, above === undefined ? Infinity : above - 0.3);
+}
+
+/// Shows floor level `level` (GET /api/layout/plan?level=N): its plan and its rooms, new
+/// keyframes on its floor, and the 3D view cut above it (storeyCut).
+async function showLevel(level) {
+  const p = await getJson(`/api/layout/plan?level=${level}`);
+  plan = p;
+  planView.setPlan(p, layoutInfo.rooms.filter((r) => p.rooms.includes(r.id)));
+  view.setCutAbove(storeyCut(p));
+  design.update();  // the plan's markers and path again
+}
+
 async function start() {
   wire();
   try {
     const [layout, p] = await Promise.all([getJson('/api/layout'), getJson('/api/layout/plan')]);
+    layoutInfo = layout;
     plan = p;
     $('layout-name').textContent = `${layout.name} (${layout.source}, ${layout.rooms.length} rooms)`;
-    planView.setPlan(p, layout.rooms);
+    planView.setPlan(p, layout.rooms.filter((r) => p.rooms.includes(r.id)));
+    if (p.levels.length > 1) {  // a storey at a time
+      const metres = (z) => (Math.abs(z) < 0.005 ? 0 : z).toFixed(2);  // no "-0.00"
+      $('level').replaceChildren(...p.levels.map((z, i) => new Option(`${i} (${metres(z)} m)`, i)));
+      $('level-box').hidden = false;
+      $('level').addEventListener('change', () => showLevel(Number($('level').value)));
+    }
     setStatus('loading the 3D view…', 'loading');
     // the 3D view frames what the plan shows (the rooms, not the ground around them)
     const lo = [p.origin[0] - p.cell_m / 2, p.origin[1] - p.cell_m / 2, p.floor_z];
     const hi = [lo[0] + p.nx * p.cell_m, lo[1] + p.ny * p.cell_m, p.floor_z + 2.5];
     const glb = await view.load('/api/layout.glb', lo, hi);
+    if (p.levels.length > 1) view.setCutAbove(storeyCut(p));
     window.studio.load_ms = performance.now() - t0;
     window.studio.glb_ms = glb.ms;
     setStatus(`ready (${(window.studio.load_ms / 1000).toFixed(2)} s)`, 'ready');

@@ -259,6 +259,13 @@ export class View3D {
     return { triangles };
   }
 
+  /// Cuts away everything above height z (our coordinates; null: nothing), so that a storey
+  /// is seen from above with the ones over it removed.
+  setCutAbove(z) {
+    this.renderer.clippingPlanes = z === null ? [] : [new THREE.Plane(new THREE.Vector3(0, -1, 0), z)];
+    this.requestRender();
+  }
+
   /// Draws the coarse copy (moving) or the full model.
   setMoving(moving) {
     if (!this.coarse || !this.model) return;

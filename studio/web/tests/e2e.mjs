@@ -6,10 +6,10 @@
 // and the frame rate; preview frames (through a fisheye too); export TUM and EuRoC and check
 // that `interiornet generate` renders them with the same poses; distortion, IMU noise and an
 // event camera refused and accepted; start a sequence job and see it finish; cancel one; a
-// random trajectory as keyframes; the page over HTTPS. A screenshot per step (docs/images/studio_*.png when
+// random trajectory as keyframes; a two-storey layout's levels; the page over HTTPS. A screenshot per step (docs/images/studio_*.png when
 // --screenshots is docs/images). Exit 0 passed, 1 failed, 77 skipped (no chromium or npm
 // packages).
-import { existsSync, mkdirSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, options, poseDifference, readPoses, run, skipUnlessBrowser, startStudio } from './lib.mjs';
 
@@ -60,6 +60,73 @@ function pickCells(plan, count) {
     chosen.push(best);
   }
   return { free: chosen.map(([i, j]) => world(i, j)), furniture };
+}
+
+/// An OBJ (Z up) of two storeys of 8 x 6 m, floors at 0 and 2.9 m, a 1 m cube of furniture on
+/// the ground floor at (2, 3) and one upstairs at (6, 3).
+function twoStoreysObj() {
+  const lines = [];
+  let base = 0;
+  const box = ([cx, cy, cz], [sx, sy, sz]) => {
+    for (let k = 0; k < 8; k++)
+      lines.push(`v ${cx + (k & 1 ? sx : -sx) / 2} ${cy + (k & 2 ? sy : -sy) / 2} ${cz + (k & 4 ? sz : -sz) / 2}`);
+    // outward faces of the corners 1..8 (bit 0: +x, bit 1: +y, bit 2: +z)
+    for (const f of [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3], [2, 4, 8, 6]])
+      lines.push(`f ${f.map((i) => i + base).join(' ')}`);
+    base += 8;
+  };
+  for (const z0 of [0, 2.9]) {
+    const w = 8, d = 6, h = 2.7, t = 0.2;
+    box([w / 2, d / 2, z0 - t / 2], [w + 2 * t, d + 2 * t, t]);
+    box([w / 2, d / 2, z0 + h + t / 2], [w + 2 * t, d + 2 * t, t]);
+    box([-t / 2, d / 2, z0 + h / 2], [t, d, h]);
+    box([w + t / 2, d / 2, z0 + h / 2], [t, d, h]);
+    box([w / 2, d + t / 2, z0 + h / 2], [w, t, h]);
+    box([w / 2, -t / 2, z0 + h / 2], [w, t, h]);
+  }
+  box([2, 3, 0.5], [1, 1, 1]);
+  box([6, 3, 3.4], [1, 1, 1]);
+  return lines.join('\n') + '\n';
+}
+
+/// A layout of two storeys: the level list, the upper plan, a keyframe clicked on it stands
+/// on the upper floor, and the 3D view is cut above the storey shown.
+async function checkLevels(browser) {
+  step('a layout of two storeys: one plan per level');
+  const obj = join(opt.work, 'two_storeys.obj');
+  writeFileSync(obj, twoStoreysObj());
+  const two = await startStudio(opt.binary, ['--layout', obj, '--up', 'z', '--out', join(opt.work, 'out')]);
+  try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    await page.goto(two.open_url);
+    await page.waitForSelector('#status[data-state=ready], #status[data-state=error]', { timeout: 60000 });
+    const options = await page.locator('#level option').allTextContents();
+    const cuts = () => page.evaluate(() => window.studio.view.renderer.clippingPlanes.map((p) => p.constant));
+    const ground_cut = await cuts();
+    check(await page.isVisible('#level') && options.length === 2 && ground_cut.length === 1,
+      `levels ${JSON.stringify(options)}; the 3D view cut at ${ground_cut} m`);
+    await page.selectOption('#level', '1');
+    await page.waitForFunction(() => window.studio.planView.plan.level === 1, null, { timeout: 20000 });
+    const upper = await page.evaluate(() => window.studio.planView.plan);
+    const cell = (x, y) => upper.rows[Math.round((y - upper.origin[1]) / upper.cell_m)][
+      Math.round((x - upper.origin[0]) / upper.cell_m)];
+    const upper_cut = await cuts();
+    check(Math.abs(upper.floor_z - 2.9) < 0.06 && cell(6, 3) === 'f' && cell(2, 3) === '.' &&
+      upper_cut.length === 1 && Math.abs(upper_cut[0] - upper.floor_z - 2.4) < 1e-6,
+    `level 1: floor ${upper.floor_z.toFixed(2)} m, its own furniture at (6, 3), free at (2, 3), the 3D view cut at ${upper_cut} m`);
+    const box = await page.locator('#plan').boundingBox();
+    const [u, v] = await page.evaluate(() => window.studio.planView.canvasPoint(2, 3));
+    await page.mouse.click(box.x + u, box.y + v);
+    await page.waitForFunction(() => window.studio.design.keyframes.length === 1, null, { timeout: 20000 });
+    const k = await page.evaluate(() => window.studio.design.keyframes[0]);
+    check(Math.abs(k.position[2] - (upper.floor_z + 1.5)) < 0.02,
+      `a keyframe clicked on level 1 stands on its floor (${JSON.stringify(k.position)})`);
+    await page.screenshot({ path: join(shots, 'studio_9_levels.png') });
+    await page.close();
+  } finally {
+    const code = await two.stop();
+    check(code === 0, `the two-storey studio stopped with exit ${code}`);
+  }
 }
 
 /// The page over HTTPS: a second studio with a self-signed certificate for 127.0.0.1
@@ -445,6 +512,7 @@ try {
   await page.evaluate(() => window.studio.view.stop());
 
   check(errors.length === 0, `no errors on the page or its console ${JSON.stringify(errors.slice(0, 3))}`);
+  await checkLevels(browser);
   await checkHttps(browser);
 } finally {
   await browser.close();
