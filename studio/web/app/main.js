@@ -235,6 +235,10 @@ function wire() {
   });
   $('fps').addEventListener('change', () => design.update());
   $('imu-noise').addEventListener('change', () => updateImu(design.result));
+  // the event camera's settings show when it is on
+  $('events-on').addEventListener('change', () => {
+    $('event-settings').hidden = !$('events-on').checked;
+  });
   // any camera setting changes the frame preview
   for (const type of ['input', 'change']) $('camera').addEventListener(type, () => frame.schedule());
 }

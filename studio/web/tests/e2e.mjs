@@ -386,6 +386,7 @@ try {
   });
   check(fish.w === 48 && fish.h === 48 && fish.corner === 0 && fish.centre > 0,
     `fisheye depth preview: corner ${fish.corner}, centre ${fish.centre} (${fish.info})`);
+  await page.locator('#frame-img').scrollIntoViewIfNeeded();
   await page.locator('#panel').screenshot({ path: join(shots, 'studio_7_frame.png') });
   await frameReady(() => page.selectOption('#lens', 'pinhole'));
   await frameReady(async () => {
@@ -487,7 +488,9 @@ try {
     const sheet = await page.evaluate(() => document.getElementById('job-sheet').naturalWidth);
     check(sheet > 0, `the sequence's contact sheet shown (${sheet} px wide)`);
   }
+  await page.locator('#job-sheet').scrollIntoViewIfNeeded();
   await page.screenshot({ path: join(shots, 'studio_6_sequence.png') });
+  await page.locator('#panel').evaluate((el) => { el.scrollTop = 0; });
 
   step('cancel a sequence job');
   await page.click('#generate');
