@@ -467,16 +467,13 @@ void writeSequenceSheet(const fs::path& seq, const fs::path& out) {
 /// The same preview meters the sequence's auto exposure (`--exposure auto`, the default), as a
 /// camera does before it records: one linear multiplier for the whole sequence (no flicker, and
 /// frames stay comparable for photometric SLAM) that puts the log-average luminance of the
-/// preview at kMiddleGrey (Reinhard et al. 2002's key; sRGB 118/255), in third stops, within
-/// +-kAutoRangeEv. Windows in full daylight then blow out a little, as in a photograph of a room,
+/// preview at middle grey (ExposureMeter: sRGB 118/255), in third stops, within +-8 stops. Windows in full daylight then blow out a little, as in a photograph of a room,
 /// instead of the room itself clipping at white (42 % of an apartment's pixels at the fixed
 /// exposure). The log-average is taken over 2x2 blocks of the preview (32 samples each): the log
 /// of a single noisy 8-spp pixel would meter darker than the scene is.
 /// A preview a quarter or more clipped at white after the exposure is warned about, with the
 /// compensation that fixes it. Returns the multiplier (1 for --exposure fixed).
 constexpr double kDarkFloor = 1e-3;
-constexpr double kMiddleGrey = 0.18;
-constexpr double kAutoRangeEv = 8.0;
 
 float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensModel& lens,
                    const Trajectory& traj, const RenderOptions& opt, const std::string& where,
@@ -495,8 +492,9 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
   ro.passes = bit(Pass::Rgb);
   CameraResponse fixed;
   fixed.exposure_ev = a.response.exposure_ev;
-  double sum = 0.0, log_sum = 0.0;
-  size_t pixels = 0, blocks = 0;
+  double sum = 0.0;
+  size_t pixels = 0;
+  ExposureMeter meter;
   std::vector<float> peaks;  // brightest channel of each pixel, before any exposure
   Frame f;
   for (int k = 0; k < 5; ++k) {
@@ -512,12 +510,7 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
         peaks.push_back(std::max({f.rgb.at(x, y, 0), f.rgb.at(x, y, 1), f.rgb.at(x, y, 2)}));
         ++pixels;
       }
-    for (int y = 0; y + 1 < f.rgb.height; y += 2)
-      for (int x = 0; x + 1 < f.rgb.width; x += 2) {
-        const double block = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1));
-        log_sum += std::log(1e-4 + std::max(0.0, block));
-        ++blocks;
-      }
+    meter.add(f.rgb);
   }
   const double mean = fixed.multiplier() * sum / static_cast<double>(std::max<size_t>(pixels, 1));
   if (mean < kDarkFloor && !a.allow_dark)
@@ -531,13 +524,7 @@ float meterPreview(const SequenceJob& a, const Renderer& renderer, const LensMod
                                       : "nothing lights what the camera sees; add lights "
                                         "(--auto-lights on, --lights light.xml), raise "
                                         "--exposure-ev"));
-  float scale = 1.f;
-  if (a.exposure == "auto") {
-    const double log_average = std::exp(log_sum / static_cast<double>(std::max<size_t>(blocks, 1)));
-    const double ev = std::clamp(std::round(3.0 * std::log2(kMiddleGrey / log_average)) / 3.0,
-                                 -kAutoRangeEv, kAutoRangeEv);
-    scale = static_cast<float>(std::exp2(ev));
-  }
+  const float scale = a.exposure == "auto" ? meter.scale() : 1.f;
   // the other way to lose the picture: most of it clipped at white (an open scene in full sun)
   const double m = scale * fixed.multiplier();
   const size_t clipped =
@@ -630,7 +617,7 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
         a.exposure == "auto" ? fmt::format(
                                    "{:+.2f} EV: log-average luminance of a 5-pose preview to {} "
                                    "(pipeline/sequence_job.cpp meterPreview)",
-                                   std::log2(response.exposure_scale), kMiddleGrey)
+                                   std::log2(response.exposure_scale), ExposureMeter::kMiddleGrey)
                              : std::string("off (--exposure fixed)");
   }
   SequenceWriter writer(spec, traj, formats);

@@ -101,4 +101,23 @@ ImageU8 applyCameraResponse(const ImageF& linear, const CameraResponse& response
   return encodeSrgb8(applyExposureAndCurve(linear, response));
 }
 
+void ExposureMeter::add(const ImageF& rgb) {
+  auto lum = [&](int x, int y) {
+    return luminance(Eigen::Vector3f(rgb.at(x, y, 0), rgb.at(x, y, 1), rgb.at(x, y, 2)));
+  };
+  for (int y = 0; y + 1 < rgb.height; y += 2)
+    for (int x = 0; x + 1 < rgb.width; x += 2) {
+      const double block = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1));
+      log_sum_ += std::log(1e-4 + std::max(0.0, std::isfinite(block) ? block : 0.0));
+      ++blocks_;
+    }
+}
+
+float ExposureMeter::scale() const {
+  const double log_average = std::exp(log_sum_ / static_cast<double>(std::max<size_t>(blocks_, 1)));
+  const double ev =
+      std::clamp(std::round(3.0 * std::log2(kMiddleGrey / log_average)) / 3.0, -kRangeEv, kRangeEv);
+  return static_cast<float>(std::exp2(ev));
+}
+
 }  // namespace inet

@@ -63,4 +63,22 @@ ImageF applyExposureAndCurve(const ImageF& linear, const CameraResponse& respons
 /// All three steps: scene-linear -> 8-bit sRGB, same size and channel count.
 ImageU8 applyCameraResponse(const ImageF& linear, const CameraResponse& response);
 
+/// Auto exposure, as a camera meters before it records: the exposure multiplier that puts the
+/// log-average luminance of the images added at middle grey (0.18, Reinhard et al. 2002's key),
+/// in third stops, within +-8 stops. The log-average is taken over 2x2 blocks (a single noisy
+/// pixel's log meters darker than the scene is); non-finite blocks count as black.
+class ExposureMeter {
+ public:
+  static constexpr double kMiddleGrey = 0.18;
+  static constexpr double kRangeEv = 8.0;
+  /// Adds the 2x2 blocks of a linear RGB image.
+  void add(const ImageF& rgb);
+  /// The multiplier: exp2 of the EV, rounded to a third and clamped to the range.
+  float scale() const;
+
+ private:
+  double log_sum_ = 0.0;
+  size_t blocks_ = 0;
+};
+
 }  // namespace inet

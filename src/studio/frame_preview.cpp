@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "render/renderer.h"
+#include "render/tonemap.h"
 #include "scene/nyu40.h"
 #include "studio/camera_keys.h"
 #include "studio/json_fields.h"
@@ -29,26 +30,6 @@ Pass parsePreviewPass(const std::string& name) {
   if (name == "label") return Pass::Label;
   if (name == "albedo") return Pass::Albedo;
   throw InputError("", "pass", "unknown pass '" + name + "' (rgb, depth, normal, label, albedo)");
-}
-
-/// The exposure multiplier the sequence's auto exposure would choose if this frame were its
-/// whole preview (pipeline/sequence_job.cpp, meterPreview): the log-average luminance of 2x2
-/// blocks to middle grey (0.18), in third stops, within +-8 stops.
-float meteredScale(const ImageF& rgb) {
-  auto lum = [&](int x, int y) {
-    return luminance(Eigen::Vector3f(rgb.at(x, y, 0), rgb.at(x, y, 1), rgb.at(x, y, 2)));
-  };
-  double log_sum = 0.0;
-  size_t blocks = 0;
-  for (int y = 0; y + 1 < rgb.height; y += 2)
-    for (int x = 0; x + 1 < rgb.width; x += 2) {
-      const double block = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1));
-      log_sum += std::log(1e-4 + std::max(0.0, std::isfinite(block) ? block : 0.0));
-      ++blocks;
-    }
-  const double log_average = std::exp(log_sum / static_cast<double>(std::max<size_t>(blocks, 1)));
-  const double ev = std::clamp(std::round(3.0 * std::log2(0.18 / log_average)) / 3.0, -8.0, 8.0);
-  return static_cast<float>(std::exp2(ev));
 }
 
 ImageU8 depthGrey(const ImageF& depth) {
@@ -135,7 +116,11 @@ std::string FramePreviewer::png(const FramePreviewRequest& req) {
     opt.denoise = true;  // a few samples per pixel: the edge-aware filter makes them readable
     r.render(req.lens, req.T_world_camera, opt, 0, frame);
     ResponseSettings response = req.response;
-    if (req.auto_exposure) response.exposure_scale = meteredScale(frame.rgb);
+    if (req.auto_exposure) {  // as the sequence's auto exposure would if this were its preview
+      ExposureMeter meter;
+      meter.add(frame.rgb);
+      response.exposure_scale = meter.scale();
+    }
     image = encodeSrgb8(response.apply(frame.rgb, 0, 0));
   } else {
     r.renderGroundTruth(req.lens, req.T_world_camera, bit(req.pass), frame);

@@ -116,6 +116,33 @@ Moments flatPatchElectrons(const SensorNoise& m, float v, uint64_t seed = 11) {
   return mo;
 }
 
+TEST(Tonemap, ExposureMeterPutsTheLogAverageAtMiddleGreyInThirdStops) {
+  ExposureMeter grey;
+  grey.add(ImageF(8, 8, 3, 0.18f));
+  EXPECT_FLOAT_EQ(grey.scale(), 1.f);
+  ExposureMeter dim;  // 2 stops under: +2 EV
+  dim.add(ImageF(8, 8, 3, 0.045f));
+  EXPECT_FLOAT_EQ(dim.scale(), 4.f);
+  ExposureMeter half;  // half black, half 0.72: the log-average of blocks is what counts
+  ImageF img(8, 8, 3, 0.f);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = 0.72f;
+  half.add(img);
+  // black blocks count as 1e-4: log-average sqrt(0.7201e-4), +4.4 EV, rounded to a third
+  const double ev = std::round(3 * std::log2(0.18 / std::sqrt(0.7201e-4))) / 3;
+  EXPECT_NEAR(std::log2(half.scale()), ev, 1e-5);
+  EXPECT_NEAR(ev, 4.0 + 1.0 / 3, 1e-9);
+  ExposureMeter two;  // images add up: 0.045 and 0.72 average to 0.18 in the log
+  two.add(ImageF(8, 8, 3, 0.045f));
+  two.add(ImageF(8, 8, 3, 0.72f));
+  EXPECT_NEAR(two.scale(), 1.f, 1e-3);
+  ExposureMeter bad;  // non-finite blocks are black, not NaN
+  bad.add(ImageF(8, 8, 3, std::numeric_limits<float>::infinity()));
+  EXPECT_TRUE(std::isfinite(bad.scale()));
+  EXPECT_FLOAT_EQ(bad.scale(), 256.f);
+}
+
 TEST(SensorNoise, FlatPatchVarianceIsSignalPlusReadNoiseSquared) {
   SensorNoise m;
   m.adc_bits = 0;  // quantisation off: the bare Poisson-Gaussian model
