@@ -983,13 +983,14 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   opt.denoise = a.denoise;
   if (temporalWindow(a) > 1) {
     // After temporal reuse the filter is wider than RenderOptions' single-frame default (3
-    // levels, sigma_color 2, tuned on the bench room at 48 spp): apartment 3's 24-frame
-    // sequence, frames 0 / 11 / 23 against two 512-spp references, flat-region error 0.114 /
-    // 0.106 / 0.095 -> 0.085 / 0.084 / 0.065, flicker 5.8 -> 4.3 %, whole image unchanged
-    // (0.142 / 0.154 / 0.155 -> 0.140 / 0.154 / 0.155) once the view through windows is kept
-    // out of the filter (docs/denoise.md, section 1b)
-    opt.denoise_options.iterations = 4;
-    opt.denoise_options.sigma_color = 3.f;
+    // levels, sigma_color 2, tuned on the bench room at 48 spp): SVGF's 5 levels and
+    // sigma_color 4. Apartment 3's 24-frame sequence, frames 0 / 11 / 23 against two 512-spp
+    // references: flat-region error 0.114 / 0.106 / 0.095 -> 0.074 / 0.079 / 0.058, flicker
+    // 5.8 -> 3.8 %, whole image unchanged (0.140 / 0.154 / 0.155) once the view through windows
+    // is kept out of the filter (docs/denoise.md, section 1b; 4 levels and sigma_color 3 gave
+    // 0.080 / 0.084 / 0.065 and 4.3 %)
+    opt.denoise_options.iterations = 5;
+    opt.denoise_options.sigma_color = 4.f;
   }
   applyDenoiseParams(a.denoise_params, opt.denoise_options, "", "--denoise-params");
   opt.light_cache = a.light_cache;
