@@ -467,9 +467,9 @@ void writeSequenceSheet(const fs::path& seq, const fs::path& out) {
 /// The same preview meters the sequence's auto exposure (`--exposure auto`, the default), as a
 /// camera does before it records: one linear multiplier for the whole sequence (no flicker, and
 /// frames stay comparable for photometric SLAM) that puts the log-average luminance of the
-/// preview at middle grey (ExposureMeter: sRGB 118/255), in third stops, within +-8 stops. Windows in full daylight then blow out a little, as in a photograph of a room,
-/// instead of the room itself clipping at white (42 % of an apartment's pixels at the fixed
-/// exposure). The log-average is taken over 2x2 blocks of the preview (32 samples each): the log
+/// preview at middle grey (ExposureMeter: sRGB 118/255), in third stops, within +-8 stops.
+/// Windows in full daylight then blow out a little, as in a photograph of a room, instead of
+/// the room itself clipping at white (42 % of an apartment's pixels at the fixed exposure). The log-average is taken over 2x2 blocks of the preview (32 samples each): the log
 /// of a single noisy 8-spp pixel would meter darker than the scene is.
 /// A preview a quarter or more clipped at white after the exposure is warned about, with the
 /// compensation that fixes it. Returns the multiplier (1 for --exposure fixed).
@@ -962,11 +962,7 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
     throw InputError("", "--stereo", "the baseline must be in 0..10 m");
   setup.event_opt = a.events.options(a.seed);
   setup.formats = splitCommaList(a.formats);
-  if (setup.lens.k3 != 0 &&
-      std::find(setup.formats.begin(), setup.formats.end(), "asl") != setup.formats.end())
-    throw InputError("", "--distortion",
-                     "the ASL sensor.yaml (Kalibr radial-tangential) holds k1 k2 p1 p2 only: give "
-                     "4 values, or a fifth (k3) with --format tum");
+  a.lens.checkFormats(setup.formats);
   // Load and check every input before anything is written; consecutive jobs of one sequence
   // (the dataset builder's frame ranges) share what they load
   const std::shared_ptr<const Prepared> prepared = preparedFor(a, setup.want);

@@ -1,6 +1,7 @@
 #include "pipeline/settings.h"
 
 #include <unistd.h>
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -279,6 +280,14 @@ LensModel LensSettings::make(const CameraIntrinsics& K, const std::string& where
     throw;
   }
   return m;
+}
+
+void LensSettings::checkFormats(const std::vector<std::string>& formats) const {
+  if (distortion.size() == 5 && distortion[4] != 0 &&
+      std::find(formats.begin(), formats.end(), "asl") != formats.end())
+    throw InputError("", "--distortion",
+                     "the ASL sensor.yaml (Kalibr radial-tangential) holds k1 k2 p1 p2 only: give "
+                     "4 values, or a fifth (k3) with --format tum");
 }
 
 RandomTrajectoryOptions MotionSettings::options(MotionType type, uint64_t seed, int frames,

@@ -115,6 +115,9 @@ struct LensSettings {
   /// checked by the caller) and derives f from fisheye_fov_deg; a panorama takes only K's size.
   /// InputError on --distortion that folds over inside the image (it cannot be rendered).
   LensModel make(const CameraIntrinsics& K, const std::string& where) const;
+  /// InputError on --distortion when a fifth coefficient (k3) meets the ASL layout among the
+  /// output `formats`: Kalibr's radial-tangential sensor.yaml holds k1 k2 p1 p2 only.
+  void checkFormats(const std::vector<std::string>& formats) const;
 };
 
 /// Options of the random trajectories (trajectory/random_trajectory.h) that `generate`,

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/text.h"
 
 // Lets the compiler vectorise the per-tap loops without run-time alias checks: every output
 // array written there is distinct from every input array.
@@ -425,30 +426,37 @@ void applyDenoiseParams(const std::string& text, DenoiseOptions& o, const std::s
                                                    {"albedo_epsilon", &o.albedo_epsilon}};
   const std::pair<const char*, int*> ints[] = {{"iterations", &o.iterations},
                                                {"mean_levels", &o.mean_levels}};
-  for (size_t at = 0; !text.empty() && at <= text.size();) {
-    const size_t comma = std::min(text.find(',', at), text.size());
-    const std::string item = text.substr(at, comma - at);
-    at = comma + 1;
+  std::vector<std::string> names;
+  for (const auto& item : ints) names.push_back(item.first);
+  for (const auto& item : floats) names.push_back(item.first);
+  // splitCommaList drops empty items; a stray comma is a typo worth naming
+  if (!text.empty() && (text.front() == ',' || text.back() == ',' ||
+                        text.find(",,") != std::string::npos))
+    throw InputError(where, field, fmt::format("'{}' has an empty item", text));
+  for (const std::string& item : splitCommaList(text)) {
     const size_t eq = item.find('=');
-    const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    const std::string key = item.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0' || !std::isfinite(v))
       throw InputError(where, field, fmt::format("'{}' is not key=number", item));
     bool known = false;
-    for (const auto& [name, target] : floats)
-      if (key == name) *target = static_cast<float>(v), known = true;
-    for (const auto& [name, target] : ints)
-      if (key == name) {
-        if (v != std::floor(v) || std::abs(v) > 1000)
-          throw InputError(where, field, fmt::format("{} must be an integer, not {}", key, value));
-        *target = static_cast<int>(v), known = true;
-      }
+    for (const auto& [name, target] : ints) {
+      if (key != name) continue;
+      if (v != std::floor(v) || std::abs(v) > 1000)
+        throw InputError(where, field, fmt::format("{} must be an integer, not {}", key, value));
+      *target = static_cast<int>(v);
+      known = true;
+    }
+    for (const auto& [name, target] : floats) {
+      if (key != name) continue;
+      *target = static_cast<float>(v);
+      known = true;
+    }
     if (!known)
       throw InputError(where, field,
-                       fmt::format("unknown key '{}' (iterations, mean_levels, sigma_normal, "
-                                   "sigma_depth, sigma_albedo, sigma_color, albedo_epsilon)",
-                                   key));
+                       fmt::format("unknown key '{}' ({})", key, listNames(names, names.size())));
   }
   try {
     validateDenoiseOptions(o, where);

@@ -687,13 +687,13 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   float prev_group_total = 0.f;     // and the sum of the photon groups' weights there
   float group_total = 0.f;          // the same at this vertex, once it has connected
   int panes = 0;  // panes passed straight through (at most kMaxPanes per path)
-  // The view through a window: while the camera's ray has only gone straight through panes
-  // (`camera_view`), the first pane it crosses starts `through_pane`, and all light gathered
+  // The view through a window: the first pane the camera's ray crosses before it scatters
+  // (bounce 0: crossing a pane is not a bounce) starts `through_pane`, and all light gathered
   // from then on is returned in `seen_emission`, which the filters leave alone. The guides of
   // such a pixel are the pane's (a flat normal, its depth, its albedo) and say nothing about the
   // view behind it: filtering with them smeared the sunlit outdoors across the glass, which came
   // out further from a 512-spp reference than the unfiltered samples (docs/denoise.md).
-  bool camera_view = true, through_pane = false;
+  bool through_pane = false;
   Vec3f L_before_pane = Vec3f::Zero();
   for (int bounce = 0, vertex = 0;; ++bounce, ++vertex) {
     const bool from_camera = vertex == 0;  // the camera's own ray (not one through a pane)
@@ -936,7 +936,6 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (prev_bsdf_pdf <= 0.f) break;
       if (splitting) share = Vec3f::Ones();
       cone_spread = std::max(cone_spread, kIndirectConeSpread);
-      camera_view = false;
       no_mis = false;
       straight = 0.f;
       light_at = at;
@@ -953,15 +952,14 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         for (int c = 0; c < 3; ++c) share[c] = f[c] > 0.f ? std::min(1.f, f_diffuse[c] / f[c]) : 0.f;
       }
       if (bsdf.type == BsdfType::ThinDielectric && bs->transmission && panes < kMaxPanes) {
-        straight += t;  // through the pane: the MIS state of the vertex before it stays, and
-        ++panes;        // it is not a bounce (a window does not shorten the path)
-        --bounce;
-        if (camera_view && !through_pane) {
+        if (bounce == 0 && !through_pane) {
           through_pane = true;
           L_before_pane = L;
         }
+        straight += t;  // through the pane: the MIS state of the vertex before it stays, and
+        ++panes;        // it is not a bounce (a window does not shorten the path)
+        --bounce;
       } else {
-        camera_view = false;
         prev_bsdf_pdf = bs->pdf;
         if (!bs->delta) cone_spread = std::max(cone_spread, lobeSpread(bsdf));
         no_mis = bs->delta;

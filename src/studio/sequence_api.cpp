@@ -137,13 +137,8 @@ SequenceRequest parseSequenceRequest(const json& body, const StudioLayout& layou
   job.exposure = response.exposure;
   job.formats = text(body, "formats", job.formats);
   try {
-    const std::vector<std::string> formats = parseFormatList(job.formats);
     // the pipeline's check, at once: Kalibr's radial-tangential model has no k3
-    if (job.lens.distortion.size() == 5 && job.lens.distortion[4] != 0 &&
-        std::find(formats.begin(), formats.end(), "asl") != formats.end())
-      throw InputError("", "distortion",
-                       "the ASL sensor.yaml (Kalibr radial-tangential) holds k1 k2 p1 p2 only: "
-                       "give 4 values, or a fifth (k3) with formats \"tum\"");
+    job.lens.checkFormats(parseFormatList(job.formats));
   } catch (const InputError& e) {
     throw asRequestError(e);
   }

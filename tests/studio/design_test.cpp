@@ -48,6 +48,21 @@ class StudioDesignTest : public ::testing::Test {
               {{"t", 1.0}, {"position", {3.3, 1.0, 1.5}}, {"look_at", {3.3, 2.0, 1.2}}}}},
             {"fps", 10}};
   }
+  /// A sequence job of 2 frames (0.2 s at 5 fps) of 32 x 24 px at 1 spp, rgb and depth only,
+  /// into folder `name`: what each job test changes is all it adds.
+  static json tinySequence(const std::string& name) {
+    json req = twoKeyframes();
+    req["keyframes"][1]["t"] = 0.2;
+    req.update({{"fps", 5},
+                {"width", 32},
+                {"height", 24},
+                {"fx", 30},
+                {"spp", 1},
+                {"imu_rate", 0},
+                {"passes", "rgb,depth"},
+                {"sequence", name}});
+    return req;
+  }
   void expectError(const httplib::Result& r, const std::string& field) {
     test::expectJsonError(r, 400, field);
   }
@@ -565,17 +580,8 @@ json waitForJob(httplib::Client& c, const std::string& url) {
 }
 
 TEST_F(StudioDesignTest, SequenceJobConfigurations) {
-  json req = twoKeyframes();
-  req["keyframes"][1]["t"] = 0.2;
-  req["fps"] = 5;  // 2 frames
-  req.update({{"width", 32},
-              {"height", 24},
-              {"fx", 30},
-              {"spp", 1},
-              {"imu_rate", 0},
-              {"passes", "rgb,depth"},
-              {"config", "original,lighting:1"},
-              {"sequence", "configs"}});
+  json req = tinySequence("configs");
+  req["config"] = "original,lighting:1";
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();
@@ -629,17 +635,8 @@ TEST(StudioToken, EveryRequestCarriesIt) {
 }
 
 TEST_F(StudioDesignTest, SequenceJobSensors) {
-  json req = twoKeyframes();
-  req["keyframes"][1]["t"] = 0.2;
-  req["fps"] = 5;  // 2 frames
-  req.update({{"width", 32},
-              {"height", 24},
-              {"fx", 30},
-              {"spp", 1},
-              {"stereo", 0.1},
-              {"imu_rate", 0},
-              {"passes", "rgb,depth"},
-              {"sequence", "stereo"}});
+  json req = tinySequence("stereo");
+  req["stereo"] = 0.1;
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();
@@ -658,22 +655,15 @@ TEST_F(StudioDesignTest, SequenceJobSensors) {
 }
 
 TEST_F(StudioDesignTest, SequenceJobEventsAndImuNoise) {
-  json req = twoKeyframes();
-  req["keyframes"][1]["t"] = 0.2;
-  req["fps"] = 5;  // 2 frames, 0.2 s
-  req.update({{"width", 32},
-              {"height", 24},
-              {"fx", 30},
-              {"spp", 1},
-              {"imu_rate", 200},
+  json req = tinySequence("events");
+  req.update({{"imu_rate", 200},
               {"imu_noise", "none"},
               {"passes", "rgb,depth,imu,events"},
               {"event_width", 16},
               {"event_height", 12},
               {"event_spp", 1},
               {"contrast", 0.3},
-              {"refractory_ms", 0.5},
-              {"sequence", "events"}});
+              {"refractory_ms", 0.5}});
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();
@@ -715,18 +705,8 @@ TEST_F(StudioDesignTest, SequenceJobEventsAndImuNoise) {
 
 TEST_F(StudioDesignTest, SequenceJobDistortion) {
   // the coefficients reach the sequence's calibration (generate's own test checks the rays)
-  json req = twoKeyframes();
-  req["keyframes"][1]["t"] = 0.2;
-  req["fps"] = 5;  // 2 frames
-  req.update({{"width", 32},
-              {"height", 24},
-              {"fx", 30},
-              {"spp", 1},
-              {"imu_rate", 0},
-              {"passes", "rgb,depth"},
-              {"formats", "tum"},
-              {"distortion", {-0.2, 0.05, 0.001, -0.002, 0.01}},
-              {"sequence", "distorted"}});
+  json req = tinySequence("distorted");
+  req.update({{"formats", "tum"}, {"distortion", {-0.2, 0.05, 0.001, -0.002, 0.01}}});
   auto c = clientOf(*server);
   const json s = waitForJob(c, jsonOf(post("/api/jobs/sequence", req))["status_url"]);
   ASSERT_EQ(s["state"], "done") << s.dump();
