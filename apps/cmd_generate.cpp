@@ -195,10 +195,11 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--temporal", a->temporal,
                   "temporal reuse window N: average each surface point's diffuse light over the "
                   "last N frames that saw it, reprojected exactly through the ground truth (depth, "
-                  "classes, object motion); speculars, lights in view, edges and newly seen points "
-                  "keep their own frame's samples; before the denoiser (docs/denoise.md). Default "
-                  "16, or 1 (off) with --exposure-ms or --readout-ms, which it cannot follow; "
-                  "1 = off")
+                  "classes, object motion), and its glossy light over those whose view turned "
+                  "by less than a tenth of the lobe's roughness; mirrors, glass, lights in view, "
+                  "edges and newly seen points keep their own frame's samples; before the "
+                  "denoiser (docs/denoise.md). Default 16, or 1 (off) with --exposure-ms or "
+                  "--readout-ms, which it cannot follow; 1 = off")
       ->each([a](const std::string&) { a->temporal_set = true; });
   cmd->add_option("--history-boost", a->history_boost,
                   "with temporal reuse: render points no earlier frame of the window saw (the "
@@ -207,6 +208,10 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--history-boost-edges", a->history_boost_edges,
                   "with temporal reuse: times --spp on class and depth edges, which keep their "
                   "own samples (default 2)");
+  cmd->add_option("--temporal-smooth", a->temporal_smooth,
+                  "with temporal reuse and the denoiser: average each surface point's denoised "
+                  "light over the last N frames (at most the --temporal window), so that what the "
+                  "filter leaves changes slowly from frame to frame (default 4; 1 = off)");
   cmd->add_flag("--allow-dark", a->allow_dark,
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "

@@ -174,6 +174,7 @@ TemporalReuseOptions reuseOptions(const SequenceJob& a) {
   t.window = temporalWindow(a);
   t.boost = a.history_boost;
   t.boost_edges = a.history_boost_edges;
+  t.smooth = a.denoise ? a.temporal_smooth : 1;  // it smooths what the denoiser leaves
   return t;
 }
 
@@ -195,7 +196,9 @@ void validateArgs(const SequenceJob& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
-  reuseOptions(a).validate("");  // --history-boost, --history-boost-edges
+  reuseOptions(a).validate("");  // --history-boost, --history-boost-edges, --temporal-smooth
+  if (a.temporal_smooth < 1 || a.temporal_smooth > 64)  // (checked above only with the denoiser)
+    throw InputError("", "--temporal-smooth", "must be in 1..64 frames (1 = off)");
   if (a.temporal_set && a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
     throw InputError("", "--temporal",
                      "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
@@ -707,6 +710,16 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   const bool learned = opt.denoise && a.denoiser == "learned";
   const bool need_layers = has(passes, Pass::Rgb) && (learned || a.save_denoiser_inputs);
   const NeuralDenoiser* net = learned ? &defaultNeuralDenoiser() : nullptr;
+  // the denoiser, then (with reuse) the average of the denoised light over the last frames
+  const int smooth_frames = temporal && opt.denoise ? reuse_opt.smoothFrames() : 1;
+  auto filterColour = [&](Frame& f, TemporalReuse* r) {
+    if (net) {
+      denoiseRgbLearned(f, layers, *net);
+    } else if (opt.denoise) {
+      denoiseRgb(f, layers, opt.denoise_options);
+    }
+    if (r && smooth_frames > 1) r->smooth(f, layers);
+  };
   auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f,
                           const std::string& dump_name) {
     if (!r && !need_layers) {
@@ -721,20 +734,19 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     if (a.save_denoiser_inputs)
       writeExr(dir / dump_name / (aslStamp(traj.poses[k].t_ns) + ".exr"), denoiserDump(f, layers),
                denoiserDumpChannels());
-    if (net) {
-      denoiseRgbLearned(f, layers, *net);
-    } else if (opt.denoise) {
-      denoiseRgb(f, layers, opt.denoise_options);
-    }
+    filterColour(f, r);
     if (has(opt.passes, Pass::Shading)) shadingFromRgb(f);  // of the filtered colour
   };
-  auto warmUp = [&](size_t k) {  // the frames before k that k's colour reuses
+  // the frames before k that k's colour depends on: the reuse window's, and before them those
+  // of the frames whose denoised light k's smoothing averages (which are denoised again here)
+  auto warmUp = [&](size_t k) {
     if (!temporal || reuse_next == k) return;
     reuse->clear();
     if (reuse1) reuse1->clear();
     RenderOptions colour = opt;
     colour.passes = bit(Pass::Rgb);
-    const size_t first_colour = k - std::min<size_t>(k, static_cast<size_t>(window - 1));
+    const auto smoothed = static_cast<size_t>(smooth_frames - 1);
+    const size_t first_colour = k - std::min<size_t>(k, static_cast<size_t>(window - 1) + smoothed);
     // the samples of those frames were planned from the geometry of the frames before them
     if (boosted)
       for (size_t j = first_colour - std::min<size_t>(first_colour, static_cast<size_t>(window - 1));
@@ -745,8 +757,13 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
       }
     for (size_t j = first_colour; j < k; ++j) {
       const auto idx = static_cast<uint32_t>(j);
+      const bool filtered = j + smoothed >= k;  // its denoised light is smoothed into k's
       renderReused(j, Pose{}, idx, colour, *reuse, warm);
-      if (reuse1) renderReused(j, T_cam0_cam1, idx | 0x80000000u, colour, *reuse1, warm);
+      if (filtered) filterColour(warm, &*reuse);
+      if (reuse1) {
+        renderReused(j, T_cam0_cam1, idx | 0x80000000u, colour, *reuse1, warm);
+        if (filtered) filterColour(warm, &*reuse1);
+      }
     }
   };
 

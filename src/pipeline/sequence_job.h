@@ -64,6 +64,9 @@ struct SequenceJob {
   /// (TemporalReuseOptions::boost, boost_edges); 1 = the same spp everywhere.
   int history_boost = 4;
   int history_boost_edges = 2;
+  /// Frames the denoised light is averaged over after temporal reuse
+  /// (TemporalReuseOptions::smooth); 1 = off.
+  int temporal_smooth = 4;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
   LensSettings lens;

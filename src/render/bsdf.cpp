@@ -301,6 +301,26 @@ Vec3f evalBsdfDiffuse(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi) {
   return Vec3f::Zero();
 }
 
+float viewDependentAlpha(const BsdfParams& p) {
+  switch (p.type) {
+    case BsdfType::Lambertian:
+    case BsdfType::Translucent:
+      return kNoViewDependentLobe;
+    case BsdfType::Plastic:
+    case BsdfType::Conductor:
+    {
+      // the narrower axis bounds how far the view may turn; a lobe smooth along one axis is a
+      // mirror along it
+      const float alpha = std::min(p.alpha_x, p.alpha_y);
+      return alpha < kSmoothAlpha ? 0.0f : alpha;
+    }
+    case BsdfType::Dielectric:
+    case BsdfType::ThinDielectric:
+      return 0.0f;
+  }
+  return 0.0f;
+}
+
 Vec3f evalBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi) {
   return evalBsdfPdf(p, wo, wi).value;
 }

@@ -129,6 +129,15 @@ Vec3f evalBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
 /// Plastic base keeps its (1 - F(cos_o)) coating factor, which changes by well under 1 % over
 /// the few degrees a camera turns around a point in a reuse window.
 Vec3f evalBsdfDiffuse(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
+/// How far the light a BSDF reflects toward the viewer may be trusted to stay the same while the
+/// view direction turns: the GGX alpha of its view-dependent lobe (Plastic's coating, a rough
+/// Conductor: the lobe is about 2 alpha radians wide in reflected directions), 0 where that lobe
+/// is a delta (a mirror, a smooth coating) or transmits (glass: what is seen through it moves
+/// with the viewer), and kNoViewDependentLobe where there is none (Lambertian, Translucent).
+/// Temporal reuse (sensors/temporal_reuse.h) carries the view-dependent light of a point from
+/// frame to frame only while the view has turned by a fraction of it.
+float viewDependentAlpha(const BsdfParams& p);
+constexpr float kNoViewDependentLobe = 1e30f;
 /// Solid-angle pdf with which sampleBsdf(p, wo, ...) returns wi; 0 for delta lobes.
 float pdfBsdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);
 BsdfEval evalBsdfPdf(const BsdfParams& p, const Vec3f& wo, const Vec3f& wi);

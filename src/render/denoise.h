@@ -118,7 +118,7 @@ std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& valu
 
 /// The colour pass in the layers of IntegratorOutputs (render/integrator.h): rgb = emission +
 /// diffuse + rest, for a caller that filters them itself (temporal reuse along a sequence, then the
-/// denoiser). Every image has 3 channels and the frame's size.
+/// denoiser). Every image has the frame's size and 3 channels, view_alpha 1.
 struct RgbLayers {
   ImageF emission;          ///< light emitted by the first surface seen (kept out of filters)
   ImageF variance;          ///< variance of the mean of rgb - emission (the denoiser's guide)
@@ -126,6 +126,7 @@ struct RgbLayers {
   ImageF diffuse_variance;  ///< variance of the mean of diffuse
   ImageF rest_variance;     ///< variance of the mean of rgb - emission - diffuse
   ImageF albedo;            ///< mean first-surface albedo over the pixel's samples
+  ImageF view_alpha;        ///< 1 channel: IntegratorOutputs::view_alpha
 };
 
 /// Denoises frame.rgb - layers.emission, guided by the frame's albedo, normal and z-depth and by

@@ -137,6 +137,10 @@ struct IntegratorOutputs {
   /// sample sees nothing): the footprint's albedo, which `diffuse` divides by exactly (the
   /// albedo pass is the pixel centre's only).
   ImageF* albedo = nullptr;
+  /// 1 channel: the least over the pixel's samples of their first surface's viewDependentAlpha
+  /// (bsdf.h; kNoViewDependentLobe where no sample has a view-dependent lobe): how far the view
+  /// may turn before `rest` changes.
+  ImageF* view_alpha = nullptr;
 };
 
 class Integrator {

@@ -52,6 +52,7 @@ int pixelSpp(const RenderOptions& o, int x, int y) {
 struct FirstSurface {
   Vec3f diffuse = Vec3f::Zero();  ///< light it reflects through its diffuse lobes
   Vec3f albedo = Vec3f::Zero();   ///< its albedo
+  float view_alpha = kNoViewDependentLobe;  ///< viewDependentAlpha of its BSDF (none: nothing hit)
 };
 
 /// Widest spread (radians) a rough bounce gives the texture cone: conservative next to the
@@ -414,8 +415,8 @@ class PathTracer final : public Integrator {
     const CameraIntrinsics& K = ctx.lens.K;
     const bool thin_lens = ctx.lens.type == LensType::ThinLens && ctx.lens.aperture_radius_m > 0;
     // the first surface's diffuse light and albedo, only when a layer asks for them
-    const bool split =
-        out.diffuse || out.diffuse_variance || out.rest_variance || out.albedo;
+    const bool split = out.diffuse || out.diffuse_variance || out.rest_variance || out.albedo ||
+                       out.view_alpha;
     // timed: the exposure has a duration and something moves (camera or objects); every sample
     // then draws its time, which places the camera (moving) and the objects (ray time)
     const bool timed = ctx.exposure != nullptr && ctx.exposure->span() > 0;
@@ -430,6 +431,7 @@ class PathTracer final : public Integrator {
       Vec3f sum = Vec3f::Zero(), sum2 = Vec3f::Zero(), sum_le = Vec3f::Zero();
       Vec3f sum_d = Vec3f::Zero(), sum2_d = Vec3f::Zero(), sum2_rest = Vec3f::Zero();
       Vec3f sum_albedo = Vec3f::Zero();
+      float view_alpha = kNoViewDependentLobe;  ///< the least over the pixel's samples
       int spp = 0;  ///< this pixel's samples (RenderOptions::spp_multiplier)
       uint32_t hashes[PixelSampler::kMaxPairs];
     };
@@ -531,6 +533,7 @@ class PathTracer final : public Integrator {
         if (split) {
           l.sum_d += fs.diffuse;
           l.sum_albedo += fs.albedo;
+          l.view_alpha = std::min(l.view_alpha, fs.view_alpha);
           l.sum2_d += fs.diffuse.cwiseProduct(fs.diffuse);
           const Vec3f rest = reflected - fs.diffuse;
           l.sum2_rest += rest.cwiseProduct(rest);
@@ -545,6 +548,7 @@ class PathTracer final : public Integrator {
       auto varianceOfMean = [&](float sum, float sum2) {
         return l.spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
       };
+      if (out.view_alpha) out.view_alpha->at(l.x, l.y) = l.view_alpha;
       for (int c = 0; c < 3; ++c) {
         rgb.at(l.x, l.y, c) = l.sum[c] / n;
         if (out.emission) out.emission->at(l.x, l.y, c) = l.sum_le[c] / n;
@@ -737,7 +741,10 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     SurfacePoint sp;
     scene.surface(object, rh.hit.primID, rh.hit.u, rh.hit.v, ng, ray.d, cone_width, sp);
     const BsdfParams& bsdf = sp.bsdf;
-    if (splitting) first_surface->albedo = sp.albedo;
+    if (splitting) {
+      first_surface->albedo = sp.albedo;
+      first_surface->view_alpha = viewDependentAlpha(bsdf);
+    }
     const bool lambert = bsdf.type == BsdfType::Lambertian;
     // Lambertian (the common case) keeps a fast path: two-sided, normal turned to face the ray.
     // Other BSDFs work in the frame of the shading normal (which lies on the geometric normal's

@@ -70,9 +70,13 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     for (ImageF* image : {&layers->emission, &layers->variance, &layers->diffuse,
                           &layers->diffuse_variance, &layers->rest_variance, &layers->albedo})
       allocate(*image);
+    if (layers->view_alpha.width != K.width || layers->view_alpha.height != K.height ||
+        layers->view_alpha.channels != 1)
+      layers->view_alpha = ImageF(K.width, K.height, 1);
     integrator_->render(ctx, frame.rgb,
                         {&layers->emission, &layers->variance, &layers->diffuse,
-                         &layers->diffuse_variance, &layers->rest_variance, &layers->albedo});
+                         &layers->diffuse_variance, &layers->rest_variance, &layers->albedo,
+                         &layers->view_alpha});
     if (few_samples) {
       const ImageF reflected = reflectedOf(*layers);
       ImageF rest = reflected;

@@ -42,20 +42,6 @@ void checkView(const FlowFrameView& f, const char* which, const CameraIntrinsics
   }
 }
 
-/// Camera-frame point seen at pixel centre (x + 0.5, y + 0.5) with depth d of `kind`; false
-/// where the lens has no ray or the depth cannot be on it (z-depth of a ray at or beyond 90 deg).
-bool backProject(const LensModel& lens, DepthKind kind, int x, int y, double d, Vec3& p) {
-  CameraRay ray;
-  if (!generateRay(lens, x + 0.5, y + 0.5, kLensCentre, ray)) return false;
-  if (kind == DepthKind::ZDepth) {
-    if (!(ray.dir.z() > 0)) return false;
-    p = ray.origin + ray.dir * (d / ray.dir.z());
-  } else {
-    p = ray.origin + ray.dir.normalized() * d;
-  }
-  return true;
-}
-
 double depthOf(DepthKind kind, const Vec3& p) {
   return kind == DepthKind::ZDepth ? p.z() : p.norm();
 }
@@ -96,6 +82,18 @@ bool visibleAt(const FlowFrameView& to, bool check_instance, bool wrap_u, const 
 }
 
 }  // namespace
+
+bool backProjectPixel(const LensModel& lens, DepthKind kind, int x, int y, double d, Vec3& p) {
+  CameraRay ray;
+  if (!generateRay(lens, x + 0.5, y + 0.5, kLensCentre, ray)) return false;
+  if (kind == DepthKind::ZDepth) {
+    if (!(ray.dir.z() > 0)) return false;
+    p = ray.origin + ray.dir * (d / ray.dir.z());
+  } else {
+    p = ray.origin + ray.dir.normalized() * d;
+  }
+  return true;
+}
 
 ObjectMotion ObjectMotion::inverse() const {
   ObjectMotion inv;
@@ -171,7 +169,7 @@ FlowField forwardFlow(const FlowFrameView& from, const FlowFrameView& to, const 
       for (int x = 0; x < W; ++x) {
         const double d = from.depth.at(x, y);
         Vec3 p;
-        if (!(d > 0) || !std::isfinite(d) || !backProject(lens, opt.depth_kind, x, y, d, p))
+        if (!(d > 0) || !std::isfinite(d) || !backProjectPixel(lens, opt.depth_kind, x, y, d, p))
           continue;  // no surface: neither valid nor occluded
         const uint16_t inst = from.instance.empty() ? 0 : from.instance.at(x, y);
         const int s = slot.empty() ? -1 : slot[inst];

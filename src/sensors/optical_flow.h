@@ -97,6 +97,11 @@ struct FlowOptions {
   void validate(const std::string& where) const;
 };
 
+/// The camera-frame point seen at pixel centre (x + 0.5, y + 0.5) with depth d of `kind` (X_ck
+/// above); false where the lens has no ray there or the depth cannot lie on it (a z-depth on a
+/// ray at or beyond 90 degrees).
+bool backProjectPixel(const LensModel& lens, DepthKind kind, int x, int y, double d, Vec3& p);
+
 /// Forward flow from frame `from` (k) to frame `to` (k+1), pixels (equations above). `lens`
 /// (any model; both frames share it) has the images' size; `motion` maps instance ids of `from`
 /// to their rigid motion between the two frames' scene times. A panorama's u flow takes the

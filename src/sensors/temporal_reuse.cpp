@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "render/bsdf.h"
 #include "scene/scene.h"
 
 namespace inet {
@@ -52,14 +54,19 @@ void TemporalReuseOptions::validate(const std::string& where) const {
                      fmt::format("{} is outside 1..16", boost_edges));
   if (!(albedo_epsilon > 0.f && albedo_epsilon <= 1.f))
     throw InputError(where, "temporal.albedo_epsilon", "must be in (0, 1]");
+  if (!(view_turn >= 0.f && view_turn <= 4.f))
+    throw InputError(where, "temporal.view_turn", "must be in [0, 4] (units of the lobe's alpha)");
+  if (smooth < 1 || smooth > 64)
+    throw InputError(where, "--temporal-smooth", fmt::format("{} is outside 1..64 frames", smooth));
   flow.validate(where);
 }
 
 std::string TemporalReuseOptions::describe() const {
   return fmt::format(
-      "window={} boost={} boost_edges={} albedo_epsilon={} occlusion_rel_tol={} "
-      "occlusion_abs_tol_m={}",
-      window, boost, boost_edges, albedo_epsilon, flow.occlusion_rel_tol, flow.occlusion_abs_tol_m);
+      "window={} boost={} boost_edges={} albedo_epsilon={} view_turn={} smooth={} "
+      "occlusion_rel_tol={} occlusion_abs_tol_m={}",
+      window, boost, boost_edges, albedo_epsilon, view_turn, smoothFrames(),
+      flow.occlusion_rel_tol, flow.occlusion_abs_tol_m);
 }
 
 TemporalReuse::TemporalReuse(const Scene& scene, const LensModel& lens,
@@ -83,21 +90,34 @@ TemporalReuse::Past TemporalReuse::geometryOf(const Frame& f, const Pose& T_worl
   // is per instance); otherwise the class and the depths decide (see interiorPixels)
   const ImageU16* instance = has_motion_ ? &f.instance : nullptr;
   return Past{T_world_camera, scene_time_s, depth, instance ? *instance : ImageU16(), f.label,
-              {}, {}, interiorPixels(f.label, instance, depth), {}};
+              {}, {}, interiorPixels(f.label, instance, depth), {}, {}, {}, {}};
 }
 
 TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose& T_world_camera,
                                                      double scene_time_s) const {
   const int W = lens_.K.width, H = lens_.K.height;
   const size_t n_px = static_cast<size_t>(W) * H;
-  Reprojection r{geometryOf(f, T_world_camera, scene_time_s), {}};
+  Reprojection r{geometryOf(f, T_world_camera, scene_time_s), {}, {}};
   const Past& self = r.self;
   // Where each interior pixel lands in each remembered frame: the (up to) 4 bilinear taps around
   // the landing point that are interior pixels of the pixel's own class (and instance, where
   // objects move; the flow's visibility rule has checked their depths), with weights summing to
   // 1; none where the point is not seen there.
   r.source.resize(past_.size());
+  r.turn.resize(past_.size());
   const FlowFrameView now{self.depth, self.instance, T_world_camera};
+  // each interior pixel's point in the world (NaN where it has none), for the view's turn
+  std::vector<Vec3f> point(n_px, Vec3f::Constant(std::numeric_limits<float>::quiet_NaN()));
+  tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < W; ++x) {
+        Vec3 p_cam;
+        if (self.interior.at(x, y) &&
+            backProjectPixel(lens_, options_.flow.depth_kind, x, y, self.depth.at(x, y), p_cam))
+          point[static_cast<size_t>(y) * W + x] = (T_world_camera * p_cam).cast<float>();
+      }
+  });
+  const Vec3f centre = T_world_camera.t.cast<float>();
   const bool wrap_u = lens_.type == LensType::Panorama;
   for (size_t j = 0; j < past_.size(); ++j) {
     const Past& p = past_[j];
@@ -107,6 +127,9 @@ TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose&
                                      lens_, motion, options_.flow);
     std::vector<Taps>& src = r.source[j];
     src.assign(n_px, Taps{});
+    std::vector<float>& turn = r.turn[j];
+    turn.assign(n_px, std::numeric_limits<float>::infinity());
+    const Vec3f centre_j = p.T_world_camera.t.cast<float>();
     tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
       for (int y = rows.begin(); y < rows.end(); ++y)
         for (int x = 0; x < W; ++x) {
@@ -133,6 +156,12 @@ TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose&
             total += w;
           }
           for (int k = 0; k < t.count; ++k) t.weight[k] /= total;
+          // the view's turn at the point (a moving object's points stay at infinity)
+          const Vec3f& X = point[static_cast<size_t>(y) * W + x];
+          if (t.count > 0 && (!has_motion_ || !motion.delta.count(inst)) && X.allFinite()) {
+            const Vec3f a = centre - X, b = centre_j - X;
+            turn[static_cast<size_t>(y) * W + x] = std::atan2(a.cross(b).norm(), a.dot(b));
+          }
         }
     });
   }
@@ -172,7 +201,8 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.albedo.width == W &&
                  depth.width == W && frame.label.width == W && frame.instance.width == W &&
                  layers.diffuse.width == W && layers.diffuse_variance.width == W &&
-                 layers.rest_variance.width == W);
+                 layers.rest_variance.width == W && layers.emission.width == W &&
+                 layers.view_alpha.width == W && layers.view_alpha.channels == 1);
   // (a frame rendered with layers, at the lens' size)
   const float eps = options_.albedo_epsilon;
   const size_t n_px = static_cast<size_t>(W) * H;
@@ -190,16 +220,20 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   self.multiplier = std::move(multiplier);
   self.irradiance = ImageF(W, H, 3);
   self.variance = ImageF(W, H, 3);
-  // this frame's demodulated diffuse light: what later frames will read
+  self.rest = ImageF(W, H, 3);
+  self.rest_variance = layers.rest_variance;
+  // this frame's demodulated diffuse light and its view-dependent light: what later frames read
   for (size_t i = 0; i < n_px * 3; ++i) {
     const float a = std::max(layers.albedo.data[i], eps);
     self.irradiance.data[i] = layers.diffuse.data[i] / a;
     self.variance.data[i] = layers.diffuse_variance.data[i] / (a * a);
+    self.rest.data[i] = frame.rgb.data[i] - layers.emission.data[i] - layers.diffuse.data[i];
   }
   auto samplesOf = [](const Past& p, size_t i) {  // the multiplier pixel i was rendered with
     return p.multiplier.data.empty() ? 1.0 : std::max<double>(1.0, p.multiplier.data[i]);
   };
   const std::vector<std::vector<Taps>>& source = r->source;
+  const std::vector<std::vector<float>>& turn = r->turn;
   if (used) *used = ImageU8(W, H, 1, 1);
   ImageF& rgb = frame.rgb;
   tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
@@ -209,14 +243,23 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
         // Each frame's estimate is weighted by the inverse of its variance factor: 1 / m for
         // this frame's own pixel (m its samples multiplier), sum w^2 / m for an interpolation of
         // a past frame's taps, every sample taken as having the same noise. The weights depend
-        // only on geometry, never on the samples, so the mean stays unbiased.
+        // only on geometry, never on the samples, so the mean stays unbiased. The rest (view-
+        // dependent light) takes the frames whose view has turned little enough, with the same
+        // weights and its own total.
         const double own = samplesOf(self, i);
+        const float alpha = layers.view_alpha.data[i];
+        const float max_turn = alpha >= kNoViewDependentLobe
+                                   ? std::numeric_limits<float>::infinity()
+                                   : options_.view_turn * alpha;
         double sum[3], var[3], total = own;
+        double rest_sum[3], rest_var[3], rest_total = own;
         for (int c = 0; c < 3; ++c) {
           sum[c] = own * self.irradiance.data[i * 3 + c];
           var[c] = own * own * self.variance.data[i * 3 + c];
+          rest_sum[c] = own * self.rest.data[i * 3 + c];
+          rest_var[c] = own * own * self.rest_variance.data[i * 3 + c];
         }
-        int n = 1;
+        int n = 1, n_rest = 1;
         // newest first: a fixed order, so the sums do not depend on threads
         for (size_t j = past_.size(); j-- > 0;) {
           const Taps& t = source[j][i];
@@ -226,18 +269,30 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
             s2 += static_cast<double>(t.weight[k]) * t.weight[k] /
                   samplesOf(past_[j], static_cast<size_t>(t.index[k]));
           const double frame_w = 1.0 / s2;
+          const bool rest_too = turn[j][i] <= max_turn;
           for (int c = 0; c < 3; ++c) {
-            double value = 0.0, value_var = 0.0;
+            double value = 0.0, value_var = 0.0, r_value = 0.0, r_var = 0.0;
             for (int k = 0; k < t.count; ++k) {
               const size_t at = static_cast<size_t>(t.index[k]) * 3 + c;
+              const double w2 = static_cast<double>(t.weight[k]) * t.weight[k];
               value += t.weight[k] * past_[j].irradiance.data[at];
-              value_var += static_cast<double>(t.weight[k]) * t.weight[k] * past_[j].variance.data[at];
+              value_var += w2 * past_[j].variance.data[at];
+              if (rest_too) {
+                r_value += t.weight[k] * past_[j].rest.data[at];
+                r_var += w2 * past_[j].rest_variance.data[at];
+              }
             }
             sum[c] += frame_w * value;
             var[c] += frame_w * frame_w * value_var;
+            rest_sum[c] += frame_w * r_value;
+            rest_var[c] += frame_w * frame_w * r_var;
           }
           total += frame_w;
           ++n;
+          if (rest_too) {
+            rest_total += frame_w;
+            ++n_rest;
+          }
         }
         if (used) used->at(x, y) = static_cast<uint8_t>(n);
         if (n == 1) continue;  // seen for the first time: the frame's own samples, untouched
@@ -249,13 +304,77 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
           rgb.data[k] += reused - layers.diffuse.data[k];
           layers.diffuse.data[k] = reused;
           layers.diffuse_variance.data[k] = reused_var;
-          // the rest's own variance plus the reused mean's (their covariance left out: the
+          if (n_rest > 1) {
+            rgb.data[k] += static_cast<float>(rest_sum[c] / rest_total) - self.rest.data[k];
+            layers.rest_variance.data[k] =
+                static_cast<float>(rest_var[c] / (rest_total * rest_total));
+          }
+          // the rest's variance plus the reused diffuse light's (their covariance left out: the
           // reused part is mostly other frames' independent samples)
           layers.variance.data[k] = reused_var + layers.rest_variance.data[k];
         }
       }
   });
+  const size_t before = past_.size();
   remember(std::move(self));
+  added_ = Added{std::move(*r), before + 1 - past_.size()};
+}
+
+void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
+  const int M = options_.smoothFrames();
+  if (M <= 1) return;
+  const int W = lens_.K.width, H = lens_.K.height;
+  INET_CHECK(!past_.empty() && frame.rgb.width == W && frame.rgb.height == H &&
+             layers.emission.width == W && layers.albedo.width == W &&
+             layers.view_alpha.width == W && added_.reprojection.source.size() + 1 ==
+                                                 past_.size() + added_.popped);
+  // (smooth() follows the add() of the same frame)
+  const float eps = options_.albedo_epsilon;
+  const size_t n_px = static_cast<size_t>(W) * H;
+  Past& self = past_.back();
+  self.filtered = ImageF(W, H, 3);
+  for (size_t i = 0; i < n_px * 3; ++i)
+    self.filtered.data[i] = (frame.rgb.data[i] - layers.emission.data[i]) /
+                            std::max(layers.albedo.data[i], eps);
+  const std::vector<std::vector<Taps>>& source = added_.reprojection.source;
+  const std::vector<std::vector<float>>& turn = added_.reprojection.turn;
+  const size_t remembered = past_.size() - 1;  // the frames before this one
+  const size_t first = remembered - std::min(remembered, static_cast<size_t>(M - 1));
+  // older frames will not be within the last M again
+  for (size_t j = 0; j < first; ++j) past_[j].filtered = ImageF();
+  tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        const float alpha = layers.view_alpha.data[i];
+        const float max_turn = alpha >= kNoViewDependentLobe
+                                   ? std::numeric_limits<float>::infinity()
+                                   : options_.view_turn * alpha;
+        double sum[3] = {self.filtered.data[3 * i], self.filtered.data[3 * i + 1],
+                         self.filtered.data[3 * i + 2]};
+        int n = 1;
+        // newest first (a fixed order); past_[j] is source[j + popped]'s frame
+        for (size_t j = remembered; j-- > first;) {
+          const size_t s = j + added_.popped;
+          const Taps& t = source[s][i];
+          if (t.count == 0 || past_[j].filtered.data.empty() || !(turn[s][i] <= max_turn))
+            continue;
+          for (int c = 0; c < 3; ++c) {
+            double value = 0.0;
+            for (int k = 0; k < t.count; ++k)
+              value += t.weight[k] * past_[j].filtered.data[static_cast<size_t>(t.index[k]) * 3 + c];
+            sum[c] += value;
+          }
+          ++n;
+        }
+        if (n == 1) continue;
+        for (int c = 0; c < 3; ++c) {
+          const size_t k = i * 3 + c;
+          frame.rgb.data[k] = layers.emission.data[k] +
+                              static_cast<float>(sum[c] / n) * std::max(layers.albedo.data[k], eps);
+        }
+      }
+  });
 }
 
 }  // namespace inet

@@ -26,9 +26,29 @@
 // that change from frame to frame (the wall behind a mirror's rim would leak into the mirror).
 //
 // Frame k's own samples always count, so a point seen for the first time (disocclusion, the
-// image edge) and an edge pixel keep exactly what frame k rendered. Light through specular lobes (mirrors,
-// glass, the coating of a varnished floor: the `rest` layer) moves with the viewer and is never
-// reused; nor is light emitted by what the pixel sees.
+// image edge) and an edge pixel keep exactly what frame k rendered. Light emitted by what the
+// pixel sees is never reused.
+//
+// View-dependent light (the `rest` layer: a varnished floor's coating, brushed metal) moves with
+// the viewer, but a rough lobe changes little while the view turns by a fraction of its width.
+// Frame j's rest is averaged in (same weights, its own total, not demodulated) where the
+// direction from the point to the camera has turned between frames j and k by at most
+// `view_turn` x alpha, alpha the least GGX alpha of the pixel's first surfaces
+// (RgbLayers::view_alpha; a GGX lobe is about 2 alpha radians wide in reflected directions). The
+// past frames all lie behind along the path, so what they add lags: on a rough metal ball (alpha
+// 0.36) turning 0.02 rad per frame, a tolerance of 0.5 alpha raised its mean 2.5 % and its error
+// above the raw frame's; 0.1 alpha (the default) cut its squared error 3.2x with the mean as the
+// frame's own (test RoughGlossyLightIsReusedOnlyWhileTheViewTurnsLittle). Delta lobes (mirrors,
+// smooth coatings) and glass have alpha 0: their rest is never reused. Points on a moving object
+// count as turned too far (their rest stays as rendered).
+//
+// Smoothing after the denoiser (`smooth`, M frames): the filtered light still changes from frame
+// to frame (the filter's colour weights follow the noise). smooth() replaces the filtered,
+// demodulated light of an interior pixel by its mean over the last M frames' filtered light at
+// the same point (the same taps; only frames whose view is within the tolerance above, or any
+// frame where the surface has no view-dependent lobe). The filtered frames share most of their
+// reused samples, so their errors are alike: the mean changes slowly, which is what it is for
+// (frame to frame flicker of apartment 3's walls 2.4 % -> 1.1 % at M = 4, docs/denoise.md 1b).
 //
 // Exactness: each I_j estimates the same quantity (for a static scene and static lights), so
 // the mean is unbiased and its noise variance falls as 1/n. What can lag: the shadow of a
@@ -48,10 +68,12 @@
 //
 // Determinism: the output of frame k depends only on frames k - window + 1 .. k, each rendered
 // from its own seed with a multiplier that depends on the geometry of the window - 1 frames
-// before it. A caller that starts at frame s > 0 (a resumed run, a frame range of a larger job)
-// first adds the geometry of frames max(0, s - 2 window + 2) .. s - window (addGeometry), then
-// frames max(0, s - window + 1) .. s - 1 (plan, render them, call add and discard the result)
-// and gets the same bytes as a run from frame 0.
+// before it; with smoothing on frames k - warmUpFrames() .. k. A caller that starts at frame s >
+// 0 (a resumed run, a frame range of a larger job) first adds the geometry of the window - 1
+// frames before s - warmUpFrames() (addGeometry), then frames max(0, s - warmUpFrames()) ..
+// s - 1 (plan, render them, call add, and for the last smooth - 1 of them denoise and smooth,
+// discarding the result) and gets the same bytes as a run from frame 0.
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -77,11 +99,22 @@ struct TemporalReuseOptions {
   /// The multiplier of pixels on a class or depth edge (they keep their own samples).
   int boost_edges = 2;
   float albedo_epsilon = 0.01f;  ///< demodulation floor, as the denoiser's
+  /// How far the view at a point may turn for its view-dependent light to be reused, in units of
+  /// its lobe's GGX alpha (0: never).
+  float view_turn = 0.1f;
+  /// Frames smooth() averages the filtered light over, the current one included (1 = off); a
+  /// window shorter than this shortens it (smoothFrames()).
+  int smooth = 4;
   FlowOptions flow;              ///< the visibility test's depth tolerances
 
   /// Throws InputError(where, "--temporal", ...) for a window outside 1..64, and names the
   /// other fields for bad tolerances.
   void validate(const std::string& where) const;
+  /// The frames before frame s that a caller starting at s renders again (see the top of this
+  /// file): window - 1, plus smooth - 1 when smoothing.
+  int warmUpFrames() const { return window - 1 + smoothFrames() - 1; }
+  /// The frames smooth() averages over: `smooth`, at most the window (1 when reuse is off).
+  int smoothFrames() const { return std::max(1, std::min(smooth, window)); }
   /// "window=8 albedo_epsilon=0.01 ..." for provenance.
   std::string describe() const;
 };
@@ -95,9 +128,9 @@ class TemporalReuse {
   /// Adds the next frame of the sequence and filters it in place: `frame` (raw rgb, with the
   /// albedo, label, instance and depth guides of Renderer::render with layers) at camera pose
   /// T_world_camera (its ground-truth instant) and scene time scene_time_s. Afterwards
-  /// frame.rgb = emission + reused diffuse + rest, layers.diffuse and layers.diffuse_variance
-  /// are the reused ones, and layers.variance = diffuse_variance + rest_variance (what the
-  /// denoiser should assume). `used`, if not null, receives per pixel how many frames were
+  /// frame.rgb = emission + reused diffuse + reused rest, layers.diffuse, diffuse_variance and
+  /// rest_variance are the reused ones, and layers.variance = diffuse_variance + rest_variance
+  /// (what the denoiser should assume). `layers` needs view_alpha (Renderer::render with layers). `used`, if not null, receives per pixel how many frames were
   /// averaged (1 .. window). Consecutive calls must be consecutive frames (clear() between
   /// sequences).
   void add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera, double scene_time_s,
@@ -108,6 +141,11 @@ class TemporalReuse {
   /// of this file). The reprojection it computes is kept for the add() of the same pose and
   /// time. Without plan(), add() takes every pixel as rendered at multiplier 1.
   const ImageU8& plan(const Frame& gt, const Pose& T_world_camera, double scene_time_s);
+  /// After add() and the denoiser, for the same frame: `frame.rgb` (emission + filtered light)
+  /// becomes emission + the filtered light averaged over the last `smooth` frames (see the top of
+  /// this file). A no-op when smooth is 1. Must follow add() of this frame, and the frames before
+  /// it must have been smoothed too for them to count (the ones that were not are left out).
+  void smooth(Frame& frame, const RgbLayers& layers);
   /// Remembers a frame's geometry only (no colour): what plan() counts for the frames after it.
   /// For a caller that starts late (see the top of this file).
   void addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s);
@@ -115,6 +153,7 @@ class TemporalReuse {
   void clear() {
     past_.clear();
     planned_.reset();
+    added_ = Added{};
   }
   /// Frames remembered (at most window - 1).
   int remembered() const { return static_cast<int>(past_.size()); }
@@ -130,6 +169,9 @@ class TemporalReuse {
     ImageF variance;     ///< of the irradiance, 3 channels
     ImageU8 interior;    ///< 1 = the 3x3 neighbourhood is one surface (see the .cpp)
     ImageU8 multiplier;  ///< the samples multiplier it was rendered with (empty: 1)
+    ImageF rest;         ///< the view-dependent light (rgb - emission - diffuse), 3 channels
+    ImageF rest_variance;
+    ImageF filtered;     ///< the denoiser's light / max(albedo, eps) (smooth(); empty: none)
   };
   /// Where pixel i lands in a remembered frame: the (up to) 4 bilinear taps around the landing
   /// point that the reuse may read, weights summing to 1; count 0 where it is not seen there.
@@ -142,6 +184,16 @@ class TemporalReuse {
   struct Reprojection {
     Past self;  ///< the frame's geometry (colour fields empty)
     std::vector<std::vector<Taps>> source;
+    /// How far the view at each pixel with taps has turned since each remembered frame: the
+    /// angle (radians) between the directions from its point to the two cameras; infinite on a
+    /// moving object.
+    std::vector<std::vector<float>> turn;
+  };
+  /// add()'s reprojection, for the smooth() of the same frame: its source[j] and turn[j] are
+  /// past_[j - popped]'s (`popped` frames left the window when the frame was added).
+  struct Added {
+    Reprojection reprojection;
+    size_t popped = 0;
   };
   /// Frame f's geometry (its depth, label, instance where objects move, interior pixels).
   Past geometryOf(const Frame& f, const Pose& T_world_camera, double scene_time_s) const;
@@ -157,6 +209,7 @@ class TemporalReuse {
   std::deque<Past> past_;  ///< oldest first
   std::unique_ptr<Reprojection> planned_;  ///< plan()'s, for the next add()
   ImageU8 planned_multiplier_;             ///< plan()'s answer
+  Added added_;                            ///< the last add()'s
 };
 
 }  // namespace inet

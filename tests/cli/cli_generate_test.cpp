@@ -634,28 +634,30 @@ TEST(Generate, HdrRerunSkipsCompleteFramesAndRedoesAFrameMissingItsExr) {
   EXPECT_EQ(filesIn(seqDir(dir2 / "out") / "cam0/data", ".exr"), 2u);
 }
 
-// Temporal reuse (--temporal): frame k's colour depends on frames k - N + 1 .. k, so a rerun
-// that finds frames 0..2 done renders the frames before 3 again first and writes the same bytes
-// for 3..5; cam1 has its own window. The colour differs from a run without reuse.
+// Temporal reuse (--temporal): frame k's colour depends on frames k - N + 1 .. k, and with the
+// smoothing after the denoiser (3 frames here: the window bounds it) on frames k - N - 1 .. k,
+// so a rerun that finds frames 0..5 done renders frames 2..5 again first and writes the same
+// bytes for 6..7; cam1 has its own window. The colour differs from a run without reuse.
 TEST(Generate, TemporalReuseResumesToTheSameBytes) {
   TempDir dir("gen_temporal");
-  const std::string args = kSmall + "--hdr --frames 6 --spp 2 --temporal 3 --stereo 0.1 " +
+  const std::string args = kSmall + "--hdr --frames 8 --spp 2 --temporal 3 --stereo 0.1 " +
                            "--passes rgb,depth --format asl --imu 0 --out ";
   RunResult whole = runInterinet(args + (dir / "whole").string());
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   const auto full = readTree(dir / "whole");
-  // a run killed after 4 frames: the first 4 frames' files only. The rerun renders frames 2
-  // and 3 again for the window, after the geometry of frames 0 and 1, which planned their
-  // samples (TemporalReuse::plan)
+  // a run killed after 6 frames: the first 6 frames' files only. The rerun renders frames 2..5
+  // again (4 and 5 for the window, 2 and 3 for theirs, as 4 and 5 are denoised and smoothed
+  // into 6), after the geometry of frames 0 and 1, which planned their samples
+  // (TemporalReuse::plan)
   const fs::path part = dir / "part";
   fs::create_directories(part);
   fs::copy(dir / "whole", part, fs::copy_options::recursive);
   for (const char* cam : {"cam0", "cam1", "depth0", "depth1"})
     for (const auto& e : fs::directory_iterator(seqDir(part) / cam / "data"))
-      if (e.path().filename().string() >= "0000000000160000000") fs::remove(e.path());
+      if (e.path().filename().string() >= "0000000000240000000") fs::remove(e.path());
   RunResult resumed = runInterinet(args + part.string());
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_NE(resumed.err.find("resuming: 4 of 6 frames"), std::string::npos) << resumed.err;
+  EXPECT_NE(resumed.err.find("resuming: 6 of 8 frames"), std::string::npos) << resumed.err;
   const auto again = readTree(part);
   ASSERT_EQ(again.size(), full.size());
   for (const auto& [name, bytes] : full) {
@@ -664,7 +666,7 @@ TEST(Generate, TemporalReuseResumesToTheSameBytes) {
     }
   }
   // and reuse changed the colour
-  RunResult plain = runInterinet(kSmall + "--hdr --frames 6 --spp 2 --stereo 0.1 --temporal 1 " +
+  RunResult plain = runInterinet(kSmall + "--hdr --frames 8 --spp 2 --stereo 0.1 --temporal 1 " +
                                  "--passes rgb,depth --format asl --imu 0 --out " +
                                  (dir / "plain").string());
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
@@ -692,6 +694,11 @@ TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
   RunResult boost = runInterinet(kSmall + "--history-boost 17" + out);
   EXPECT_NE(boost.exit_code, 0);
   EXPECT_NE(boost.err.find("--history-boost"), std::string::npos) << boost.err;
+  for (const char* smooth : {"--temporal-smooth 0", "--temporal-smooth 0 --no-denoise"}) {
+    RunResult bad = runInterinet(kSmall + smooth + out);
+    EXPECT_NE(bad.exit_code, 0) << smooth;
+    EXPECT_NE(bad.err.find("--temporal-smooth"), std::string::npos) << bad.err;
+  }
   RunResult blur = runInterinet(kSmall + "--temporal 4 --exposure-ms 5" + out);
   EXPECT_NE(blur.exit_code, 0);
   EXPECT_NE(blur.err.find("global shutter"), std::string::npos) << blur.err;
