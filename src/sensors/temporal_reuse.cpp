@@ -170,6 +170,7 @@ TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose&
 
 const ImageU8& TemporalReuse::plan(const Frame& gt, const Pose& T_world_camera,
                                    double scene_time_s) {
+  added_ = Added{};  // the previous frame's smoothing is over
   planned_ = std::make_unique<Reprojection>(reproject(gt, T_world_camera, scene_time_s));
   // the samples multiplier: more where fewer remembered frames will give reused light
   const std::vector<std::vector<Taps>>& source = planned_->source;
@@ -187,6 +188,7 @@ const ImageU8& TemporalReuse::plan(const Frame& gt, const Pose& T_world_camera,
 void TemporalReuse::addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s) {
   remember(geometryOf(gt, T_world_camera, scene_time_s));
   planned_.reset();
+  added_ = Added{};
 }
 
 void TemporalReuse::remember(Past&& p) {
@@ -317,7 +319,8 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   });
   const size_t before = past_.size();
   remember(std::move(self));
-  added_ = Added{std::move(*r), before + 1 - past_.size()};
+  // kept for smooth() only: the taps are the largest thing here (36 bytes per pixel and frame)
+  if (options_.smoothFrames() > 1) added_ = Added{std::move(*r), before + 1 - past_.size()};
 }
 
 void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
@@ -375,6 +378,7 @@ void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
         }
       }
   });
+  added_ = Added{};  // done with its taps
 }
 
 }  // namespace inet
