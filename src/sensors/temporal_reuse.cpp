@@ -327,11 +327,11 @@ void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
   const int M = options_.smoothFrames();
   if (M <= 1) return;
   const int W = lens_.K.width, H = lens_.K.height;
-  INET_CHECK(!past_.empty() && frame.rgb.width == W && frame.rgb.height == H &&
-             layers.emission.width == W && layers.albedo.width == W &&
-             layers.view_alpha.width == W && added_.reprojection.source.size() + 1 ==
-                                                 past_.size() + added_.popped);
-  // (smooth() follows the add() of the same frame)
+  INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.emission.width == W &&
+             layers.albedo.width == W && layers.view_alpha.width == W);
+  // smooth() follows the add() of the same frame, whose taps added_ holds
+  INET_CHECK(!past_.empty() &&
+             added_.reprojection.source.size() + 1 == past_.size() + added_.popped);
   const float eps = options_.albedo_epsilon;
   const size_t n_px = static_cast<size_t>(W) * H;
   Past& self = past_.back();
