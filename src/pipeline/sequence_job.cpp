@@ -196,9 +196,10 @@ void validateArgs(const SequenceJob& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
-  reuseOptions(a).validate("");  // --history-boost, --history-boost-edges, --temporal-smooth
-  if (a.temporal_smooth < 1 || a.temporal_smooth > 64)  // (checked above only with the denoiser)
-    throw InputError("", "--temporal-smooth", "must be in 1..64 frames (1 = off)");
+  // --history-boost, --history-boost-edges, --temporal-smooth (even where no denoiser uses it)
+  TemporalReuseOptions reuse = reuseOptions(a);
+  reuse.smooth = a.temporal_smooth;
+  reuse.validate("");
   if (a.temporal_set && a.temporal > 1 && (a.exposure_ms > 0 || a.readout_ms > 0))
     throw InputError("", "--temporal",
                      "needs a global shutter without motion blur (--exposure-ms 0, --readout-ms "
@@ -472,8 +473,9 @@ void writeSequenceSheet(const fs::path& seq, const fs::path& out) {
 /// frames stay comparable for photometric SLAM) that puts the log-average luminance of the
 /// preview at middle grey (ExposureMeter: sRGB 118/255), in third stops, within +-8 stops.
 /// Windows in full daylight then blow out a little, as in a photograph of a room, instead of
-/// the room itself clipping at white (42 % of an apartment's pixels at the fixed exposure). The log-average is taken over 2x2 blocks of the preview (32 samples each): the log
-/// of a single noisy 8-spp pixel would meter darker than the scene is.
+/// the room itself clipping at white (42 % of an apartment's pixels at the fixed exposure). The
+/// log-average is taken over 2x2 blocks of the preview (32 samples each): the log of a single
+/// noisy 8-spp pixel would meter darker than the scene is.
 /// A preview a quarter or more clipped at white after the exposure is warned about, with the
 /// compensation that fixes it. Returns the multiplier (1 for --exposure fixed).
 constexpr double kDarkFloor = 1e-3;
@@ -711,7 +713,8 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
   const bool need_layers = has(passes, Pass::Rgb) && (learned || a.save_denoiser_inputs);
   const NeuralDenoiser* net = learned ? &defaultNeuralDenoiser() : nullptr;
   // the denoiser, then (with reuse) the average of the denoised light over the last frames
-  const int smooth_frames = temporal && opt.denoise ? reuse_opt.smoothFrames() : 1;
+  // (reuse_opt.smooth is 1 without the denoiser)
+  const int smooth_frames = temporal ? reuse_opt.smoothFrames() : 1;
   auto filterColour = [&](Frame& f, TemporalReuse* r) {
     if (net) {
       denoiseRgbLearned(f, layers, *net);
@@ -746,7 +749,8 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     RenderOptions colour = opt;
     colour.passes = bit(Pass::Rgb);
     const auto smoothed = static_cast<size_t>(smooth_frames - 1);
-    const size_t first_colour = k - std::min<size_t>(k, static_cast<size_t>(window - 1) + smoothed);
+    const size_t first_colour =
+        k - std::min<size_t>(k, static_cast<size_t>(reuse_opt.warmUpFrames()));
     // the samples of those frames were planned from the geometry of the frames before them
     if (boosted)
       for (size_t j = first_colour - std::min<size_t>(first_colour, static_cast<size_t>(window - 1));
@@ -961,6 +965,10 @@ std::map<int, AssetCredit> assetCredits(const Scene& scene) {
                            piece->license.empty() ? catalog->license : piece->license};
   }
   return credits;
+}
+
+int temporalWarmUpFrames(const SequenceJob& job) {
+  return temporalWindow(job) > 1 ? reuseOptions(job).warmUpFrames() : 0;
 }
 
 SequenceJobResult runSequenceJob(const SequenceJob& a) {

@@ -136,4 +136,9 @@ struct SequenceJobResult {
 /// stop handlers are installed. Uses the calling thread's TBB limits (ThreadLimit in apps/).
 SequenceJobResult runSequenceJob(const SequenceJob& job);
 
+/// The frames before a frame range's first that `job` renders again so that the range gives the
+/// bytes of a whole run (temporal reuse's window and smoothing: TemporalReuseOptions::
+/// warmUpFrames; 0 without reuse).
+int temporalWarmUpFrames(const SequenceJob& job);
+
 }  // namespace inet

@@ -47,9 +47,9 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     frame.shading = {};
     return;
   }
-  auto allocate = [&](ImageF& image) {
-    if (image.width != K.width || image.height != K.height || image.channels != 3)
-      image = ImageF(K.width, K.height, 3);
+  auto allocate = [&](ImageF& image, int channels = 3) {
+    if (image.width != K.width || image.height != K.height || image.channels != channels)
+      image = ImageF(K.width, K.height, channels);
   };
   allocate(frame.rgb);
   INET_CHECK(!options.spp_multiplier || (options.spp_multiplier->width == K.width &&
@@ -70,9 +70,7 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     for (ImageF* image : {&layers->emission, &layers->variance, &layers->diffuse,
                           &layers->diffuse_variance, &layers->rest_variance, &layers->albedo})
       allocate(*image);
-    if (layers->view_alpha.width != K.width || layers->view_alpha.height != K.height ||
-        layers->view_alpha.channels != 1)
-      layers->view_alpha = ImageF(K.width, K.height, 1);
+    allocate(layers->view_alpha, 1);
     integrator_->render(ctx, frame.rgb,
                         {&layers->emission, &layers->variance, &layers->diffuse,
                          &layers->diffuse_variance, &layers->rest_variance, &layers->albedo,

@@ -185,6 +185,11 @@ const ImageU8& TemporalReuse::plan(const Frame& gt, const Pose& T_world_camera,
   return planned_multiplier_;
 }
 
+float TemporalReuse::maxTurn(float view_alpha) const {
+  return view_alpha >= kNoViewDependentLobe ? std::numeric_limits<float>::infinity()
+                                            : options_.view_turn * view_alpha;
+}
+
 void TemporalReuse::addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s) {
   remember(geometryOf(gt, T_world_camera, scene_time_s));
   planned_.reset();
@@ -249,10 +254,7 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
         // dependent light) takes the frames whose view has turned little enough, with the same
         // weights and its own total.
         const double own = samplesOf(self, i);
-        const float alpha = layers.view_alpha.data[i];
-        const float max_turn = alpha >= kNoViewDependentLobe
-                                   ? std::numeric_limits<float>::infinity()
-                                   : options_.view_turn * alpha;
+        const float max_turn = maxTurn(layers.view_alpha.data[i]);
         double sum[3], var[3], total = own;
         double rest_sum[3], rest_var[3], rest_total = own;
         for (int c = 0; c < 3; ++c) {
@@ -349,10 +351,7 @@ void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < W; ++x) {
         const size_t i = static_cast<size_t>(y) * W + x;
-        const float alpha = layers.view_alpha.data[i];
-        const float max_turn = alpha >= kNoViewDependentLobe
-                                   ? std::numeric_limits<float>::infinity()
-                                   : options_.view_turn * alpha;
+        const float max_turn = maxTurn(layers.view_alpha.data[i]);
         double sum[3] = {self.filtered.data[3 * i], self.filtered.data[3 * i + 1],
                          self.filtered.data[3 * i + 2]};
         int n = 1;

@@ -130,8 +130,9 @@ class TemporalReuse {
   /// T_world_camera (its ground-truth instant) and scene time scene_time_s. Afterwards
   /// frame.rgb = emission + reused diffuse + reused rest, layers.diffuse, diffuse_variance and
   /// rest_variance are the reused ones, and layers.variance = diffuse_variance + rest_variance
-  /// (what the denoiser should assume). `layers` needs view_alpha (Renderer::render with layers). `used`, if not null, receives per pixel how many frames were
-  /// averaged (1 .. window). Consecutive calls must be consecutive frames (clear() between
+  /// (what the denoiser should assume). `layers` needs view_alpha (Renderer::render with
+  /// layers). `used`, if not null, receives per pixel how many frames were averaged
+  /// (1 .. window). Consecutive calls must be consecutive frames (clear() between
   /// sequences).
   void add(Frame& frame, RgbLayers& layers, const Pose& T_world_camera, double scene_time_s,
            ImageU8* used = nullptr);
@@ -198,6 +199,9 @@ class TemporalReuse {
   /// Frame f's geometry (its depth, label, instance where objects move, interior pixels).
   Past geometryOf(const Frame& f, const Pose& T_world_camera, double scene_time_s) const;
   Reprojection reproject(const Frame& f, const Pose& T_world_camera, double scene_time_s) const;
+  /// How far the view may turn for a pixel of this view_alpha (RgbLayers) to take a past
+  /// frame's view-dependent light: view_turn x alpha, infinite where it has none.
+  float maxTurn(float view_alpha) const;
   /// The depth of the flow's kind in f.
   const ImageF& depthOf(const Frame& f) const;
   void remember(Past&& p);

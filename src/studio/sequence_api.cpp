@@ -81,12 +81,9 @@ json renderInRanges(const SequenceRequest& req, SequenceJob job, size_t n, JobCo
     done = job.frame_end;
     ctx.progress(static_cast<double>(done) / n, fmt::format("rendered {} of {} frames", done, n));
     // the next range: long enough that loading the scene again costs at most a fifth of it,
-    // and that the frames a range renders again to warm up temporal reuse (up to temporal - 1
-    // before its first, and smooth - 1 before those) cost at most half of it
+    // and that the frames a range renders again to warm up temporal reuse cost at most half of it
     const double per_frame = std::max(1e-3, last.sequences_s / rendered);
-    const int warm_up = std::max(0, job.temporal - 1) +
-                        std::max(0, std::min(job.temporal_smooth, job.temporal) - 1);
-    chunk = std::max<size_t>({size_t{1}, 2 * static_cast<size_t>(warm_up),
+    chunk = std::max<size_t>({size_t{1}, 2 * static_cast<size_t>(temporalWarmUpFrames(job)),
                               static_cast<size_t>(std::ceil(4 * last.setup_s / per_frame))});
   }
   const auto& s = last.sequences.front();

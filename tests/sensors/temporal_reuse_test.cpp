@@ -108,6 +108,16 @@ std::vector<Rendered> run(const Scene& scene, int window, int first, int last, i
   return out;
 }
 
+/// Frame k of run()'s orbit (every 2nd pose) at 1,024 spp, another frame index (independent
+/// samples): the reference the reused frames are compared with.
+Frame referenceOfFrame(const Scene& scene, int k) {
+  Renderer r(scene);
+  Frame ref;
+  const Trajectory traj = builtinTrajectory(2 * (k + 1), 25.0);
+  r.render(smallLens(), traj.poses[2 * k].T_world_camera, colour(1024), 999, ref);
+  return ref;
+}
+
 /// Do the 8 neighbours of (x, y) show the same instance (a pixel whose samples all land on it)?
 bool interior(const ImageU16& instance, int x, int y) {
   for (int dy = -1; dy <= 1; ++dy)
@@ -125,11 +135,7 @@ TEST(TemporalReuse, StaticDiffuseNoiseFallsWithTheFramesAveragedWithoutBias) {
   const int kWindow = 8;
   const std::vector<Rendered> seq = run(scene, kWindow, 0, kWindow - 1, 4);
   const Rendered& last = seq.back();
-  // the reference: the last view at 1024 spp, another frame index (independent samples)
-  Renderer r(scene);
-  Frame ref;
-  const Trajectory traj = builtinTrajectory(2 * kWindow, 25.0);
-  r.render(smallLens(), traj.poses[2 * (kWindow - 1)].T_world_camera, colour(1024), 999, ref);
+  const Frame ref = referenceOfFrame(scene, kWindow - 1);
   double se_raw = 0, se_reused = 0, sum_reused = 0, sum_ref = 0, se_raw_in = 0, se_reused_in = 0;
   double sum_raw = 0;
   int all = 0, px = 0;
@@ -166,10 +172,15 @@ TEST(TemporalReuse, StaticDiffuseNoiseFallsWithTheFramesAveragedWithoutBias) {
   for (uint8_t n : last.used.data) ASSERT_TRUE(n >= 1 && n <= kWindow);
 }
 
-/// The default room with a ball of `material` (instance 900) where the orbit looks.
-Scene roomWithBall(const Material& material) {
+/// The default room with a silver ball of `roughness` (instance 900) where the orbit looks.
+Scene roomWithSilverBall(float roughness) {
+  Material silver;
+  silver.id = "silver_ball";
+  silver.type = MaterialType::Conductor;
+  silver.metal = "silver";
+  silver.roughness = roughness;
   Scene scene = makeDefaultScene();
-  scene.materials.push_back(material);
+  scene.materials.push_back(silver);
   Object o;
   o.name = "ball";
   o.mesh = static_cast<int>(scene.meshes.size());
@@ -186,12 +197,7 @@ Scene roomWithBall(const Material& material) {
 
 TEST(TemporalReuse, NewPixelsMirrorsAndSpecularLightKeepTheirOwnFramesSamples) {
   // a smooth mirror ball where the orbit looks: view-dependent, never reused
-  Material mirror;
-  mirror.id = "mirror";
-  mirror.type = MaterialType::Conductor;
-  mirror.metal = "silver";
-  mirror.roughness = 0.f;
-  const Scene scene = roomWithBall(mirror);
+  const Scene scene = roomWithSilverBall(0.f);
   const std::vector<Rendered> seq = run(scene, 4, 0, 3, 2);
   int mirror_px = 0, new_px = 0, light_px = 0;
   for (const Rendered& f : seq)
@@ -231,19 +237,11 @@ TEST(TemporalReuse, NewPixelsMirrorsAndSpecularLightKeepTheirOwnFramesSamples) {
 // 2.5 % and its squared error exceeded the raw frame's (0.25: +0.5 %, error / 2.4; 0.1: error /
 // 3.2). With view_turn 0 it stays exactly as rendered.
 TEST(TemporalReuse, RoughGlossyLightIsReusedOnlyWhileTheViewTurnsLittle) {
-  Material rough;
-  rough.id = "rough_silver";
-  rough.type = MaterialType::Conductor;
-  rough.metal = "silver";
-  rough.roughness = 0.6f;
-  const Scene scene = roomWithBall(rough);
+  const Scene scene = roomWithSilverBall(0.6f);
   const int kWindow = 8;
   const std::vector<Rendered> seq = run(scene, kWindow, 0, kWindow - 1, 16);
   const Rendered& last = seq.back();
-  Renderer r(scene);
-  Frame ref;
-  const Trajectory traj = builtinTrajectory(2 * kWindow, 25.0);
-  r.render(smallLens(), traj.poses[2 * (kWindow - 1)].T_world_camera, colour(1024), 999, ref);
+  const Frame ref = referenceOfFrame(scene, kWindow - 1);
   int ball = 0, changed = 0;
   double se_raw = 0, se = 0, sum = 0, sum_raw = 0, sum_ref = 0;
   for (int y = 0; y < 72; ++y)
@@ -403,10 +401,7 @@ TEST(TemporalReuse, PlannedSamplesFollowTheHistoryAndKeepTheMeanUnbiased) {
   EXPECT_GT(boosted_new, 50) << "the orbit brings new pixels in";
   EXPECT_GT(full_history, 96 * 72 / 2);
   // against 1024 spp: the mean of static pixels seen by every frame stays within 0.5 %
-  Renderer r(scene);
-  Frame ref;
-  const Trajectory traj = builtinTrajectory(2 * kWindow, 25.0);
-  r.render(smallLens(), traj.poses[2 * (kWindow - 1)].T_world_camera, colour(1024), 999, ref);
+  const Frame ref = referenceOfFrame(scene, kWindow - 1);
   const Rendered& last = seq.back();
   double sum = 0, sum_ref = 0, se = 0, se_raw = 0;
   for (int y = 0; y < 72; ++y)
