@@ -100,7 +100,8 @@ def main():
     if not names:
         sys.exit(f"sequence_quality.py: no cam0/data/*.exr in {a.seq} (generate --hdr)")
     out = {"frames": {}, "flicker": {}, "flicker_walls": {}, "flicker_floors": {},
-           "flicker_ceilings": {}, "flicker_light": {}}
+           "flicker_ceilings": {}, "flicker_light": {}, "flicker_albedo": {},
+           "flicker_albedo_walls": {}, "flicker_albedo_floors": {}, "flicker_albedo_ceilings": {}}
     img = {n: load(os.path.join(a.seq, "cam0/data", n + ".exr"))[:, :, :3] for n in names}
     lab = {n: load_labels(os.path.join(a.seq, "label0/data", n + "_nyu.png")) for n in names}
     albedo = {}  # the albedo pass where it was written (generate --passes ...,albedo)
@@ -159,7 +160,18 @@ def main():
             S1 = (img[n1] / np.maximum(a1, 0.01)) @ REC709
             d = np.abs(S1[tyc, txc] - S0)[ok]
             out["flicker_light"][n0] = float(d.mean() / max(S0[ok].mean(), 1e-12)) if ok.any() else None
-    for key in ("flicker", "flicker_walls", "flicker_floors", "flicker_ceilings", "flicker_light"):
+            # the measure's own floor: the albedo is exact, so what it gives is the texture's
+            # gradient under the nearest-pixel reprojection, flicker no renderer can remove
+            A0, A1 = a0 @ REC709, a1 @ REC709
+            d = np.abs(A1[tyc, txc] - A0)
+            out["flicker_albedo"][n0] = float(d[ok].mean() / max(A0[ok].mean(), 1e-12)) if ok.any() else None
+            for cls, name in zip(FLAT, ("walls", "floors", "ceilings")):
+                m = ok & (l0 == cls)
+                if m.sum() > 100:
+                    out["flicker_albedo_" + name][n0] = float(d[m].mean() / max(A0[m].mean(), 1e-12))
+    for key in ("flicker", "flicker_walls", "flicker_floors", "flicker_ceilings", "flicker_light",
+                "flicker_albedo", "flicker_albedo_walls", "flicker_albedo_floors",
+                "flicker_albedo_ceilings"):
         fl = [v for v in out[key].values() if v is not None]
         out["mean_" + key] = float(np.mean(fl)) if fl else None
     for key in ("rel_rmse_flat", "rel_rmse_flat_true"):

@@ -230,11 +230,6 @@ std::optional<BsdfSample> sampleDielectric(const BsdfParams& p, const Vec3f& wo,
 //   R = F + (1 - F)^2 F (1 + F^2 + F^4 + ...) = 2F / (1 + F),   T = 1 - R,
 // with transmission straight through (the pane's lateral offset is ignored).
 
-float thinDielectricReflectance(const BsdfParams& p, float cos_theta) {
-  float f = fresnelDielectric(std::abs(cos_theta), std::max(p.ior, 1.0f));
-  return 2.0f * f / (1.0f + f);
-}
-
 std::optional<BsdfSample> sampleThinDielectric(const BsdfParams& p, const Vec3f& wo, float u_lobe) {
   const float r = thinDielectricReflectance(p, wo.z());
   if (u_lobe < r) return deltaSample(Vec3f(-wo.x(), -wo.y(), wo.z()), p.specular_tint, r, false);
@@ -408,6 +403,11 @@ BsdfParams makeDielectric(float ior, float alpha, const Vec3f& transmittance,
   p.transmittance = clamp01(transmittance);
   p.specular_tint = clamp01(specular_tint);
   return p;
+}
+
+float thinDielectricReflectance(const BsdfParams& p, float cos_theta) {
+  float f = fresnelDielectric(std::abs(cos_theta), std::max(p.ior, 1.0f));
+  return 2.0f * f / (1.0f + f);
 }
 
 Vec3f thinDielectricTransmission(const BsdfParams& p, float cos_theta) {

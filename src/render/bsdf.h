@@ -177,6 +177,8 @@ BsdfParams makeThinDielectric(float ior = 1.5f, const Vec3f& transmittance = Vec
 /// The straight-through transmission of a thin pane at |cos theta| (its delta lobe's weight:
 /// transmittance x (1 - 2F / (1 + F))). Shadow rays pass panes with this factor.
 Vec3f thinDielectricTransmission(const BsdfParams& p, float cos_theta);
+/// Its reflectance 2F / (1 + F) (F: Fresnel at cos_theta), before the specular tint.
+float thinDielectricReflectance(const BsdfParams& p, float cos_theta);
 /// Diffuse reflectance + diffuse transmittance; scaled down so that their sum is <= 1 per
 /// channel.
 BsdfParams makeTranslucent(const Vec3f& reflectance, const Vec3f& transmittance);

@@ -708,4 +708,29 @@ void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& opt
   for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] += layers.emission.data[i];
 }
 
+void filterWindowView(ImageF& rgb, ImageF& emission, const WindowViewLayers& view,
+                      const DenoiseOptions& options, bool few_samples) {
+  INET_CHECK(rgb.channels == 3 && emission.width == rgb.width && emission.height == rgb.height);
+  checkPass(view.light, rgb, 3, "window view light");
+  checkPass(view.coverage, rgb, 1, "window view coverage");
+  if (std::none_of(view.coverage.data.begin(), view.coverage.data.end(),
+                   [](float c) { return c > 0.f; }))
+    return;  // no surface seen through a pane
+  ImageF variance = few_samples ? std::move(neighbourhoodVariance({&view.light}, view.albedo,
+                                                                  view.normal, view.depth,
+                                                                  options)[0])
+                                : view.variance;
+  const ImageF filtered =
+      denoise(view.light, view.albedo, view.normal, view.depth, &variance, options);
+  for (size_t i = 0; i < view.coverage.data.size(); ++i) {
+    const float c = view.coverage.data[i];
+    if (!(c > 0.f)) continue;
+    for (size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      const float delta = c * (filtered.data[k] - view.light.data[k]);
+      rgb.data[k] += delta;
+      emission.data[k] += delta;
+    }
+  }
+}
+
 }  // namespace inet

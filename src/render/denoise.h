@@ -129,6 +129,31 @@ struct RgbLayers {
   ImageF view_alpha;        ///< 1 channel: IntegratorOutputs::view_alpha
 };
 
+/// The view straight through window panes (IntegratorOutputs::window_view): the light of a
+/// pixel's samples whose camera ray crossed a pane and then hit a surface (outdoors, the sunlit
+/// ground and facades), with that surface's guides. Its light is part of the emission layer,
+/// because the frame's guides there are the pane's and say nothing about what lies behind it;
+/// left raw it was 94 % of a 1-spp sequence frame's squared error on an apartment with a large
+/// window (docs/rendering.md). filterWindowView denoises it on its own guides. Samples that
+/// reach the sky stay out of it: the sky is exact per direction and may have detail (an
+/// environment map) that no guide describes.
+struct WindowViewLayers {
+  ImageF light;     ///< 3: mean light of those samples (0 where there are none)
+  ImageF variance;  ///< 3: variance of that mean
+  ImageF coverage;  ///< 1: their share of the pixel's samples
+  ImageF albedo;    ///< 3: mean albedo of the surfaces they hit
+  ImageF normal;    ///< 3: unit mean normal of those surfaces (world frame; 0: none)
+  ImageF depth;     ///< 1: mean z-depth of those surfaces in metres (0: none)
+};
+
+/// Denoises the window view and puts it back where it was: rgb and emission both hold
+/// coverage x light, which is replaced by coverage x denoise(light) with the view's own guides
+/// (denoise(); pixels without a surface behind a pane keep their samples). `few_samples`: the
+/// variance comes from the neighbourhood on the same outdoor surface (neighbourhoodVariance),
+/// as for renders below kNeighbourhoodVarianceBelowSpp.
+void filterWindowView(ImageF& rgb, ImageF& emission, const WindowViewLayers& view,
+                      const DenoiseOptions& options, bool few_samples);
+
 /// Denoises frame.rgb - layers.emission, guided by the frame's albedo, normal and z-depth and by
 /// layers.variance, and adds the emission back (what Renderer::render does with
 /// RenderOptions::denoise). The frame must carry those guides (rendered with layers).

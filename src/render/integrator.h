@@ -19,6 +19,7 @@
 namespace inet {
 
 class EmbreeScene;
+struct WindowViewLayers;
 
 /// Everything that controls how a frame is rendered. Part of a dataset's provenance.
 struct RenderOptions {
@@ -141,6 +142,9 @@ struct IntegratorOutputs {
   /// (bsdf.h; kNoViewDependentLobe where no sample has a view-dependent lobe): how far the view
   /// may turn before `rest` changes.
   ImageF* view_alpha = nullptr;
+  /// The view straight through window panes, with its own guides (denoise.h WindowViewLayers;
+  /// its light is also in `emission`). Allocated by the caller at the camera's size.
+  WindowViewLayers* window_view = nullptr;
 };
 
 class Integrator {

@@ -16,6 +16,7 @@
 
 #include "core/color.h"
 #include "render/bsdf.h"
+#include "render/denoise.h"
 #include "render/embree_scene.h"
 #include "render/integrator.h"
 #include "render/light_cache.h"
@@ -53,6 +54,31 @@ struct FirstSurface {
   Vec3f diffuse = Vec3f::Zero();  ///< light it reflects through its diffuse lobes
   Vec3f albedo = Vec3f::Zero();   ///< its albedo
   float view_alpha = kNoViewDependentLobe;  ///< viewDependentAlpha of its BSDF (none: nothing hit)
+};
+
+/// Window panes on the camera's line of sight (before any bounce), split: the path follows
+/// one delta lobe of each of the first `forced` panes it meets there, reflecting at the one
+/// numbered `reflect_at` (0 = the first; -1: none, straight through all of them) and going
+/// straight through the others, with each lobe's full weight (r x tint, or the transmission),
+/// no pick. renderBlock sums the paths of every such choice. Picking a lobe by its share left a
+/// pixel at few samples either the bright outdoors or the dim reflection of the room: at 1 spp
+/// about a tenth of a window's pixels came out black, and that light is kept out of every
+/// filter. A catalog window's glass is a thin box: two panes on every line of sight.
+struct PaneSplit {
+  int forced = 0;
+  int reflect_at = -1;
+  int met = 0;  ///< out: forced panes the path met
+};
+/// Panes split on each line of sight: a glazing's two faces.
+constexpr int kSplitPanes = 2;
+
+/// The surface a camera ray met after going straight through window panes (the window view of
+/// IntegratorOutputs): none when it went on to the sky.
+struct WindowHit {
+  bool hit = false;
+  Vec3f albedo = Vec3f::Zero();
+  Vec3f normal = Vec3f::Zero();  ///< shading normal facing the ray, world frame
+  float distance = 0.f;          ///< along the camera ray, metres
 };
 
 /// Widest spread (radians) a rough bounce gives the texture cone: conservative next to the
@@ -424,6 +450,8 @@ class PathTracer final : public Integrator {
     const float inv_span = timed ? 1.f / static_cast<float>(ctx.exposure->span()) : 0.f;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
+    WindowViewLayers* const view = out.window_view;
+    const Vec3f forward = R.col(2);  // the camera's z axis: z-depth = distance x (d . forward)
     struct Lane {
       int x = 0, y = 0;
       uint32_t pixel = 0;
@@ -432,6 +460,11 @@ class PathTracer final : public Integrator {
       Vec3f sum_d = Vec3f::Zero(), sum2_d = Vec3f::Zero(), sum2_rest = Vec3f::Zero();
       Vec3f sum_albedo = Vec3f::Zero();
       float view_alpha = kNoViewDependentLobe;  ///< the least over the pixel's samples
+      // the window view: its samples' light, squared light, albedo, normal and z-depth
+      Vec3f sum_w = Vec3f::Zero(), sum2_w = Vec3f::Zero(), sum_wa = Vec3f::Zero();
+      Vec3f sum_wn = Vec3f::Zero();
+      float sum_wz = 0.f;
+      int count_w = 0;
       int spp = 0;  ///< this pixel's samples (RenderOptions::spp_multiplier)
       uint32_t hashes[PixelSampler::kMaxPairs];
     };
@@ -523,9 +556,40 @@ class PathTracer final : public Integrator {
         first.hit.instID[0] = rh.hit.instID[0][k];
         Vec3f le;
         FirstSurface fs;
-        Vec3f v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
-                           &first, caching);
+        WindowHit window;
+        Vec3f v;
+        if (first.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
+            isPane(ctx.scene, ctx.scene.objectOf(first.hit))) {
+          // the panes on the line of sight, split (PaneSplit): straight through the first two,
+          // reflected at the first, and (where there is a second) reflected at the second;
+          // every path draws the same numbers
+          const PixelSampler start = *smp[k];
+          PaneSplit through{kSplitPanes, -1};
+          v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
+                       &first, caching, view ? &window : nullptr, &through);
+          for (int at = 0; at < std::min(through.met, kSplitPanes); ++at) {
+            PixelSampler again = start;
+            PaneSplit reflected{at + 1, at};
+            Vec3f le_r;
+            FirstSurface fs_r;
+            v += radiance(ctx, ray[k], pixel_spread, again, le_r, split ? &fs_r : nullptr, rays,
+                          &first, caching, nullptr, &reflected);
+            le += le_r;
+            fs.diffuse += fs_r.diffuse;
+          }
+        } else {
+          v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
+                       &first, caching, view ? &window : nullptr);
+        }
         Lane& l = lanes[k];
+        if (window.hit) {
+          ++l.count_w;
+          l.sum_w += le;
+          l.sum2_w += le.cwiseProduct(le);
+          l.sum_wa += window.albedo;
+          l.sum_wn += window.normal;
+          l.sum_wz += window.distance * ray[k].d.dot(forward);
+        }
         l.sum += v;
         l.sum_le += le;
         Vec3f reflected = v - le;  // the variance guide describes what gets filtered
@@ -549,6 +613,22 @@ class PathTracer final : public Integrator {
         return l.spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
       };
       if (out.view_alpha) out.view_alpha->at(l.x, l.y) = l.view_alpha;
+      if (view) {
+        const auto m = static_cast<float>(l.count_w);
+        const float norm = l.sum_wn.norm();
+        view->coverage.at(l.x, l.y) = m / n;
+        view->depth.at(l.x, l.y) = l.count_w > 0 ? l.sum_wz / m : 0.f;
+        for (int c = 0; c < 3; ++c) {
+          const bool any = l.count_w > 0;
+          view->light.at(l.x, l.y, c) = any ? l.sum_w[c] / m : 0.f;
+          view->variance.at(l.x, l.y, c) =
+              l.count_w > 1
+                  ? std::max(0.f, (l.sum2_w[c] - l.sum_w[c] * l.sum_w[c] / m) / (m - 1.f)) / m
+                  : 0.f;
+          view->albedo.at(l.x, l.y, c) = any ? l.sum_wa[c] / m : 0.f;
+          view->normal.at(l.x, l.y, c) = any && norm > 0.f ? l.sum_wn[c] / norm : 0.f;
+        }
+      }
       for (int c = 0; c < 3; ++c) {
         rgb.at(l.x, l.y, c) = l.sum[c] / n;
         if (out.emission) out.emission->at(l.x, l.y, c) = l.sum_le[c] / n;
@@ -563,6 +643,12 @@ class PathTracer final : public Integrator {
               varianceOfMean(reflected - l.sum_d[c], l.sum2_rest[c]);
       }
     }
+  }
+
+  /// A window pane: a thin dielectric that is not a light (what shadow rays pass through).
+  static bool isPane(const EmbreeScene& scene, int object) {
+    return scene.object(object).bsdf.type == BsdfType::ThinDielectric &&
+           scene.object(object).first_light < 0;
   }
 
   static bool intersect(const EmbreeScene& scene, const Ray& ray, RTCRayHit& rh,
@@ -652,13 +738,16 @@ class PathTracer final : public Integrator {
   /// light cache light picks are weighed by, or the one this path's shadow rays train.
   Vec3f radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
                  Vec3f& seen_emission, FirstSurface* first_surface, uint64_t& rays,
-                 const RTCRayHit* first = nullptr, const LightCaching& caching = {}) const;
+                 const RTCRayHit* first = nullptr, const LightCaching& caching = {},
+                 WindowHit* window = nullptr, PaneSplit* panes_split = nullptr) const;
 };
 
 Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread, PixelSampler& smp,
                            Vec3f& seen_emission, FirstSurface* first_surface, uint64_t& rays,
-                           const RTCRayHit* first, const LightCaching& caching) const {
+                           const RTCRayHit* first, const LightCaching& caching,
+                           WindowHit* window, PaneSplit* panes_split) const {
   seen_emission = Vec3f::Zero();
+  WindowHit beyond;  // the surface behind the panes, while the camera's ray goes straight on
   // The diffuse share of the first surface (scattering vertex 0): its light sample adds
   // f_diffuse / f of its contribution to the diffuse light at once; everything gathered after
   // its BSDF sample (L - L_at_first) is split by that direction's f_diffuse / f, `share`, at the
@@ -711,6 +800,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       hit = intersect(scene, ray, rh);
     }
     if (!hit) {
+      if (through_pane && bounce == 0) beyond.hit = false;  // out to the sky
       float sun_pdf;
       Vec3f sun = scene.lights().environmentRadiance(ray.d, no_mis ? nullptr : &light_at, sun_pdf);
       if (sun.maxCoeff() > 0.f) {
@@ -754,6 +844,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     // in front, transmission goes through).
     const Vec3f n_face = cos_emit > 0.f ? ng : Vec3f(-ng);
     const Vec3f ns_face = cos_emit > 0.f ? sp.ns : Vec3f(-sp.ns);
+    if (through_pane && bounce == 0)  // another pane behind the first is passed by again
+      beyond = WindowHit{true, sp.albedo, ns_face, straight + t};
     Frame3 frame{Vec3f::UnitX(), Vec3f::UnitY(), Vec3f::UnitZ()};  // set below unless Lambertian
     Vec3f wo = Vec3f::UnitZ();
     if (!lambert) {
@@ -951,6 +1043,16 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       throughput = throughput.cwiseProduct(sp.albedo);
     } else {
       std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
+      if (panes_split && bounce == 0 && bsdf.type == BsdfType::ThinDielectric &&
+          panes_split->met < panes_split->forced) {
+        // a pane on the camera's line, split (PaneSplit): this path's lobe, its full weight
+        const bool transmit = panes_split->met++ != panes_split->reflect_at;
+        const float r = thinDielectricReflectance(bsdf, wo.z());
+        bs = BsdfSample{transmit ? Vec3f(-wo) : Vec3f(-wo.x(), -wo.y(), wo.z()),
+                        transmit ? Vec3f(bsdf.transmittance * (1.f - r))
+                                 : Vec3f(bsdf.specular_tint * r),
+                        1.f, true, transmit};
+      }
       if (!bs || bs->pdf <= 0.f) break;
       wi = frame.toWorld(bs->wi).normalized();
       if (!consistent(wi, bs->wi.z())) break;
@@ -994,6 +1096,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
   }
   if (first_surface) first_surface->diffuse = diffuse + share.cwiseProduct(L - L_at_first);
   if (through_pane) seen_emission = L - L_before_pane;
+  if (window) *window = through_pane ? beyond : WindowHit{};
   return L;
 }
 

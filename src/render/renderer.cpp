@@ -66,6 +66,19 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     return neighbourhoodVariance(values, frame.albedo, frame.normal, frame.depth_z,
                                  options.denoise_options);
   };
+  // the view through window panes is denoised on its own guides wherever the colour will be
+  // (filterWindowView), before anything else reads the layers
+  WindowViewLayers window_view;
+  WindowViewLayers* const view = options.denoise ? &window_view : nullptr;
+  if (view) {
+    for (ImageF* image : {&view->light, &view->variance, &view->albedo, &view->normal})
+      allocate(*image);
+    allocate(view->coverage, 1);
+    allocate(view->depth, 1);
+  }
+  auto filterView = [&](ImageF& emission) {
+    if (view) filterWindowView(frame.rgb, emission, *view, options.denoise_options, few_samples);
+  };
   if (layers) {
     for (ImageF* image : {&layers->emission, &layers->variance, &layers->diffuse,
                           &layers->diffuse_variance, &layers->rest_variance, &layers->albedo})
@@ -74,7 +87,8 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     integrator_->render(ctx, frame.rgb,
                         {&layers->emission, &layers->variance, &layers->diffuse,
                          &layers->diffuse_variance, &layers->rest_variance, &layers->albedo,
-                         &layers->view_alpha});
+                         &layers->view_alpha, view});
+    filterView(layers->emission);
     if (few_samples) {
       const ImageF reflected = reflectedOf(*layers);
       ImageF rest = reflected;
@@ -90,7 +104,10 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     RgbLayers own;
     allocate(own.emission);
     allocate(own.variance);
-    integrator_->render(ctx, frame.rgb, {&own.emission, &own.variance});
+    IntegratorOutputs outputs{&own.emission, &own.variance};
+    outputs.window_view = view;
+    integrator_->render(ctx, frame.rgb, outputs);
+    filterView(own.emission);
     if (few_samples) {
       const ImageF reflected = reflectedOf(own);
       own.variance = std::move(neighbourhood({&reflected})[0]);
