@@ -63,7 +63,12 @@ struct FirstSurface {
 /// no pick. renderBlock sums the paths of every such choice. Picking a lobe by its share left a
 /// pixel at few samples either the bright outdoors or the dim reflection of the room: at 1 spp
 /// about a tenth of a window's pixels came out black, and that light is kept out of every
-/// filter. A catalog window's glass is a thin box: two panes on every line of sight.
+/// filter. A catalog window's glass is a thin box: two panes on every line of sight. Its two
+/// reflections (off the front face, and off the back face seen through the front) leave in the
+/// same direction a few millimetres apart, so one path stands for both (reflect_at
+/// kEitherFace): it reflects at the first face with probability q = 1 / (1 + T) (their shares
+/// when the faces are alike), weight r / q, and otherwise goes through it, weight T / (1 - q),
+/// and reflects at the second, weight r. Unbiased for any q, and one path fewer per sample.
 struct PaneSplit {
   int forced = 0;
   int reflect_at = -1;
@@ -71,6 +76,8 @@ struct PaneSplit {
 };
 /// Panes split on each line of sight: a glazing's two faces.
 constexpr int kSplitPanes = 2;
+/// PaneSplit::reflect_at: at the first or the second face, picked (see above).
+constexpr int kEitherFace = -2;
 
 /// The surface a camera ray met after going straight through window panes (the window view of
 /// IntegratorOutputs): none when it went on to the sky.
@@ -561,22 +568,19 @@ class PathTracer final : public Integrator {
         if (first.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
             isPane(ctx.scene, ctx.scene.objectOf(first.hit))) {
           // the panes on the line of sight, split (PaneSplit): straight through the first two,
-          // reflected at the first, and (where there is a second) reflected at the second;
-          // every path draws the same numbers
-          const PixelSampler start = *smp[k];
+          // then reflected at the first or (where there is a second) at either face; both
+          // paths draw the same numbers
+          PixelSampler again = *smp[k];
           PaneSplit through{kSplitPanes, -1};
           v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
                        &first, caching, view ? &window : nullptr, &through);
-          for (int at = 0; at < std::min(through.met, kSplitPanes); ++at) {
-            PixelSampler again = start;
-            PaneSplit reflected{at + 1, at};
-            Vec3f le_r;
-            FirstSurface fs_r;
-            v += radiance(ctx, ray[k], pixel_spread, again, le_r, split ? &fs_r : nullptr, rays,
-                          &first, caching, nullptr, &reflected);
-            le += le_r;
-            fs.diffuse += fs_r.diffuse;
-          }
+          PaneSplit reflected = through.met >= 2 ? PaneSplit{2, kEitherFace} : PaneSplit{1, 0};
+          Vec3f le_r;
+          FirstSurface fs_r;
+          v += radiance(ctx, ray[k], pixel_spread, again, le_r, split ? &fs_r : nullptr, rays,
+                        &first, caching, nullptr, &reflected);
+          le += le_r;
+          fs.diffuse += fs_r.diffuse;
         } else {
           v = radiance(ctx, ray[k], pixel_spread, *smp[k], le, split ? &fs : nullptr, rays,
                        &first, caching, view ? &window : nullptr);
@@ -1042,16 +1046,23 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       prev_group_total = group_total;
       throughput = throughput.cwiseProduct(sp.albedo);
     } else {
-      std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, smp.get1D(), u_bsdf);
+      const float u_lobe = smp.get1D();
+      std::optional<BsdfSample> bs = sampleBsdf(bsdf, wo, u_lobe, u_bsdf);
       if (panes_split && bounce == 0 && bsdf.type == BsdfType::ThinDielectric &&
           panes_split->met < panes_split->forced) {
         // a pane on the camera's line, split (PaneSplit): this path's lobe, its full weight
-        const bool transmit = panes_split->met++ != panes_split->reflect_at;
         const float r = thinDielectricReflectance(bsdf, wo.z());
+        const Vec3f T = bsdf.transmittance * (1.f - r), R = bsdf.specular_tint * r;
+        float share = 1.f;  // of this lobe, when the path picked it (kEitherFace)
+        if (panes_split->reflect_at == kEitherFace) {
+          const float q = 1.f / (1.f + luminance(T));
+          const bool here = u_lobe < q;
+          share = here ? q : 1.f - q;
+          panes_split->reflect_at = here ? 0 : 1;
+        }
+        const bool transmit = panes_split->met++ != panes_split->reflect_at;
         bs = BsdfSample{transmit ? Vec3f(-wo) : Vec3f(-wo.x(), -wo.y(), wo.z()),
-                        transmit ? Vec3f(bsdf.transmittance * (1.f - r))
-                                 : Vec3f(bsdf.specular_tint * r),
-                        1.f, true, transmit};
+                        (transmit ? T : R) / share, 1.f, true, transmit};
       }
       if (!bs || bs->pdf <= 0.f) break;
       wi = frame.toWorld(bs->wi).normalized();
@@ -1061,7 +1072,9 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
         for (int c = 0; c < 3; ++c) share[c] = f[c] > 0.f ? std::min(1.f, f_diffuse[c] / f[c]) : 0.f;
       }
       if (bsdf.type == BsdfType::ThinDielectric && bs->transmission && panes < kMaxPanes) {
-        if (bounce == 0 && !through_pane) {
+        // (not on a split path that reflects at a later face: that light is the room's,
+        // reflected on the pane, as the front face's is)
+        if (bounce == 0 && !through_pane && !(panes_split && panes_split->reflect_at >= 0)) {
           through_pane = true;
           L_before_pane = L;
         }

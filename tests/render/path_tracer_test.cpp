@@ -487,14 +487,14 @@ TEST(PathTracer, TheViewThroughAPaneIsKeptOutOfTheFiltersAndItsReflectionIsNot) 
   // the wall: albedo x sky = 0.5 (its front half-space sees only sky). Clear glass at
   // near-normal incidence: a thin pane passes T = 2n / (n^2 + 1) = 0.923 and reflects
   // R = 1 - T = 0.077 (interreflections included); the slab's front and back faces are two
-  // panes. Filtered: the front face's reflection of the sky behind the camera, R x 1. Kept:
-  // everything after the first crossing, the wall through both, T^2 x 0.5, and the back face's
-  // reflection back out to that sky, T R T x 1 (higher orders < 0.001)
+  // panes. Kept: the view through both, the wall, T^2 x 0.5. Filtered: the room's reflections
+  // on the pane (the sky behind the camera), off the front face, R x 1, and off the back face
+  // back out through the front, T R T x 1 (higher orders < 0.001)
   const double T = 2 * 1.5 / (1.5 * 1.5 + 1), R = 1 - T;
   std::printf("wall %.4f; through the pane: kept %.4f, filtered %.4f\n", wall_rgb, kept, filtered);
   EXPECT_NEAR(wall_rgb, 0.5, 0.02);
-  EXPECT_NEAR(kept, T * T * 0.5 + T * R * T, 0.01);
-  EXPECT_NEAR(filtered, R, 0.01);
+  EXPECT_NEAR(kept, T * T * 0.5, 0.01);
+  EXPECT_NEAR(filtered, R + T * R * T, 0.01);
 }
 
 // The same window at 1 and 2 spp. The camera's line of sight through the slab is split at both
@@ -564,13 +564,18 @@ TEST(PathTracer, APanesTwoLobesAreBothFollowedAndTheViewThroughItIsFilteredOnIts
   };
   const Window one = render(1, false, 1);
   ASSERT_GT(one.through.size(), 250u);
-  // the front face's reflection of the uniform sky, R x 1, in every pixel at 1 spp
-  for (size_t i = 0; i < one.reflection.size(); ++i)
-    ASSERT_NEAR(one.reflection[i], R, 0.01) << "window pixel " << i;
-  // the view through: no pixel without it (the wall T^2 x 0.5 plus the back face's T R T)
-  const double expected = T * T * 0.5 + T * R * T;
+  // the reflections of the uniform sky, R + T R T, in every pixel at 1 spp: one path stands for
+  // both faces' (PaneSplit kEitherFace), R (1 + T) whichever it took, unless it reflected
+  // again inside the glass (under a tenth of them)
+  // (picking one lobe instead, nine pixels in ten had none)
+  int off = 0;
+  for (double reflection : one.reflection) off += std::abs(reflection - R * (1 + T)) > 0.005;
+  EXPECT_LT(off, static_cast<int>(one.reflection.size()) / 6);
+  EXPECT_NEAR(mean(one.reflection), R + T * R * T, 0.01);
+  // the view through, the wall's T^2 x 0.5: no pixel without it
+  const double expected = T * T * 0.5;
   for (size_t i = 0; i < one.through.size(); ++i)
-    ASSERT_GT(one.through[i], 0.1 * expected) << "window pixel " << i;
+    ASSERT_GT(one.through[i], 0.02 * expected) << "window pixel " << i;
   // filtered on the outside wall's guides: less noise, the same mean
   const Window raw = render(2, false, 2), filtered = render(2, true, 2);
   const double raw_error = rms(raw.through, expected), filtered_error = rms(filtered.through, expected);
@@ -579,7 +584,7 @@ TEST(PathTracer, APanesTwoLobesAreBothFollowedAndTheViewThroughItIsFilteredOnIts
               raw_error, filtered_error, mean(raw.through), mean(filtered.through), expected);
   EXPECT_LT(filtered_error, 0.5 * raw_error);
   EXPECT_NEAR(mean(filtered.through), expected, 0.02 * expected);
-  EXPECT_NEAR(mean(filtered.reflection), R, 0.01);
+  EXPECT_NEAR(mean(filtered.reflection), R + T * R * T, 0.01);
 }
 
 TEST(PathTracer, TheDiffuseLayerIsAllOfLambertianLightSomeOfPlasticsAndNoneOfAMirrors) {
