@@ -21,7 +21,8 @@ forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label ne
 both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709),
 also per class (flicker_walls, _floors, _ceilings) and, where the sequence has the albedo pass
 (`--passes ...,albedo`), on the light alone (flicker_light: colour / albedo, so the texture's
-gradient under a sub-pixel reprojection does not count as flicker).
+gradient under a sub-pixel reprojection does not count as flicker), and the measure's own floor
+on the albedo pass, which is exact (flicker_albedo, per class too: what a perfect render gives).
 Specular light moves with the view, so a perfect render does not give 0 on a varnished floor.
 Prints one line "SEQ_JSON {...}".
 """
