@@ -60,12 +60,12 @@ struct FirstSurface {
 /// one delta lobe of each of the first `forced` panes it meets there, reflecting at the one
 /// numbered `reflect_at` (0 = the first; -1: none, straight through all of them) and going
 /// straight through the others, with each lobe's full weight (r x tint, or the transmission),
-/// no pick. renderBlock sums the paths of every such choice. Picking a lobe by its share left a
-/// pixel at few samples either the bright outdoors or the dim reflection of the room: at 1 spp
-/// about a tenth of a window's pixels came out black, and that light is kept out of every
-/// filter. A catalog window's glass is a thin box: two panes on every line of sight. Its two
-/// reflections (off the front face, and off the back face seen through the front) leave in the
-/// same direction a few millimetres apart, so one path stands for both (reflect_at
+/// no pick. renderBlock sums two paths: straight through, and reflected. Picking a lobe by its
+/// share left a pixel at few samples either the bright outdoors or the dim reflection of the
+/// room: at 1 spp about a tenth of a window's pixels came out black, and that light is kept out
+/// of every filter. A catalog window's glass is a thin box: two panes on every line of sight.
+/// Its two reflections (off the front face, and off the back face seen through the front) leave
+/// in the same direction a few millimetres apart, so one path stands for both (reflect_at
 /// kEitherFace): it reflects at the first face with probability q = 1 / (1 + T) (their shares
 /// when the faces are alike), weight r / q, and otherwise goes through it, weight T / (1 - q),
 /// and reflects at the second, weight r. Unbiased for any q, and one path fewer per sample.

@@ -578,7 +578,8 @@ TEST(PathTracer, APanesTwoLobesAreBothFollowedAndTheViewThroughItIsFilteredOnIts
     ASSERT_GT(one.through[i], 0.02 * expected) << "window pixel " << i;
   // filtered on the outside wall's guides: less noise, the same mean
   const Window raw = render(2, false, 2), filtered = render(2, true, 2);
-  const double raw_error = rms(raw.through, expected), filtered_error = rms(filtered.through, expected);
+  const double raw_error = rms(raw.through, expected);
+  const double filtered_error = rms(filtered.through, expected);
   std::printf("through the pane at 2 spp: rms error %.4f raw, %.4f filtered; mean %.4f, %.4f "
               "(expected %.4f)\n",
               raw_error, filtered_error, mean(raw.through), mean(filtered.through), expected);
