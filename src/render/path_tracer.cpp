@@ -611,24 +611,22 @@ class PathTracer final : public Integrator {
     for (const Lane& l : lanes) {
       if (!l.inside) continue;
       const auto n = static_cast<float>(l.spp);
-      // unbiased sample variance of the mean of a sum's samples, from their sum and sum of
+      // unbiased sample variance of the mean of `count` samples, from their sum and sum of
       // squares
-      auto varianceOfMean = [&](float sum, float sum2) {
-        return l.spp > 1 ? std::max(0.f, (sum2 - sum * sum / n) / (n - 1.f)) / n : 0.f;
+      auto varianceOfMean = [](float sum, float sum2, int count) {
+        const auto m = static_cast<float>(count);
+        return count > 1 ? std::max(0.f, (sum2 - sum * sum / m) / (m - 1.f)) / m : 0.f;
       };
       if (out.view_alpha) out.view_alpha->at(l.x, l.y) = l.view_alpha;
       if (view) {
+        const bool any = l.count_w > 0;
         const auto m = static_cast<float>(l.count_w);
         const float norm = l.sum_wn.norm();
         view->coverage.at(l.x, l.y) = m / n;
-        view->depth.at(l.x, l.y) = l.count_w > 0 ? l.sum_wz / m : 0.f;
+        view->depth.at(l.x, l.y) = any ? l.sum_wz / m : 0.f;
         for (int c = 0; c < 3; ++c) {
-          const bool any = l.count_w > 0;
           view->light.at(l.x, l.y, c) = any ? l.sum_w[c] / m : 0.f;
-          view->variance.at(l.x, l.y, c) =
-              l.count_w > 1
-                  ? std::max(0.f, (l.sum2_w[c] - l.sum_w[c] * l.sum_w[c] / m) / (m - 1.f)) / m
-                  : 0.f;
+          view->variance.at(l.x, l.y, c) = varianceOfMean(l.sum_w[c], l.sum2_w[c], l.count_w);
           view->albedo.at(l.x, l.y, c) = any ? l.sum_wa[c] / m : 0.f;
           view->normal.at(l.x, l.y, c) = any && norm > 0.f ? l.sum_wn[c] / norm : 0.f;
         }
@@ -637,14 +635,14 @@ class PathTracer final : public Integrator {
         rgb.at(l.x, l.y, c) = l.sum[c] / n;
         if (out.emission) out.emission->at(l.x, l.y, c) = l.sum_le[c] / n;
         const float reflected = l.sum[c] - l.sum_le[c];
-        if (out.variance) out.variance->at(l.x, l.y, c) = varianceOfMean(reflected, l.sum2[c]);
+        if (out.variance) out.variance->at(l.x, l.y, c) = varianceOfMean(reflected, l.sum2[c], l.spp);
         if (out.diffuse) out.diffuse->at(l.x, l.y, c) = l.sum_d[c] / n;
         if (out.albedo) out.albedo->at(l.x, l.y, c) = l.sum_albedo[c] / n;
         if (out.diffuse_variance)
-          out.diffuse_variance->at(l.x, l.y, c) = varianceOfMean(l.sum_d[c], l.sum2_d[c]);
+          out.diffuse_variance->at(l.x, l.y, c) = varianceOfMean(l.sum_d[c], l.sum2_d[c], l.spp);
         if (out.rest_variance)
           out.rest_variance->at(l.x, l.y, c) =
-              varianceOfMean(reflected - l.sum_d[c], l.sum2_rest[c]);
+              varianceOfMean(reflected - l.sum_d[c], l.sum2_rest[c], l.spp);
       }
     }
   }
@@ -1051,8 +1049,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
       if (panes_split && bounce == 0 && bsdf.type == BsdfType::ThinDielectric &&
           panes_split->met < panes_split->forced) {
         // a pane on the camera's line, split (PaneSplit): this path's lobe, its full weight
-        const float r = thinDielectricReflectance(bsdf, wo.z());
-        const Vec3f T = bsdf.transmittance * (1.f - r), R = bsdf.specular_tint * r;
+        const Vec3f T = thinDielectricTransmission(bsdf, wo.z());
+        const Vec3f R = bsdf.specular_tint * thinDielectricReflectance(bsdf, wo.z());
         float share = 1.f;  // of this lobe, when the path picked it (kEitherFace)
         if (panes_split->reflect_at == kEitherFace) {
           const float q = 1.f / (1.f + luminance(T));

@@ -67,9 +67,9 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
                                  options.denoise_options);
   };
   // the view through window panes is denoised on its own guides wherever the colour will be
-  // (filterWindowView), before anything else reads the layers
+  // (filterWindowView), before anything else reads the layers; a scene without panes has none
   WindowViewLayers window_view;
-  WindowViewLayers* const view = options.denoise ? &window_view : nullptr;
+  WindowViewLayers* const view = options.denoise && scene_->hasPanes() ? &window_view : nullptr;
   if (view) {
     for (ImageF* image : {&view->light, &view->variance, &view->albedo, &view->normal})
       allocate(*image);

@@ -53,7 +53,7 @@ struct Rendered {
 struct RunSettings {
   int boost = 1;          // plan samples (TemporalReuseOptions::boost) when > 1
   int geometry_from = 0;  // with boost: the first frame whose geometry is remembered
-  float view_turn = TemporalReuseOptions{}.view_turn;;
+  float view_turn = TemporalReuseOptions{}.view_turn;  // tolerance of the glossy reuse
   int smooth = 1;         // > 1: denoise each frame and smooth it over this many
   int step = 2;           // poses of the 50-fps orbit between frames
 };
