@@ -178,6 +178,12 @@ void registerGenerate(CLI::App& app) {
                 "the sun patch on the floor throws onto walls and ceilings is found by a shadow "
                 "ray instead of by chance. Unbiased (MIS); on by default, a no-op without a sun "
                 "or panes (docs/rendering.md)");
+  cmd->add_flag("--lamp-photons,!--no-lamp-photons", a->lamp_photons,
+                "lamp photons: each frame traces photons from every point and spot light, and "
+                "every path vertex also connects to a point within half a metre of a lamp that "
+                "they lit (its shade, back plate or reflector), whose light otherwise reaches "
+                "the room by rare paths (fireflies). Unbiased (MIS); on by default, a no-op "
+                "without point or spot lights (docs/rendering.md)");
   cmd->add_option("--denoiser", a->denoiser,
                   "which denoiser --denoise runs: atrous (edge-avoiding wavelets guided by the "
                   "noise level, default) or learned (a small U-Net trained on our own renders, "

@@ -29,6 +29,7 @@ struct RenderArgs {
   bool denoise = false;
   bool light_cache = false;
   bool sun_photons = false;
+  bool lamp_photons = false;
   ResponseSettings response;
   std::string camera_end;
   double exposure_ms = 0.0;
@@ -88,6 +89,7 @@ void runRender(const RenderArgs& a) {
   opt.denoise = a.denoise;
   opt.light_cache = a.light_cache;
   opt.sun_photons = a.sun_photons;
+  opt.lamp_photons = a.lamp_photons;
   Frame f;
   CameraExposure exposure = CameraExposure::fixed(cam.T_world_camera);
   if (!a.camera_end.empty()) {
@@ -146,6 +148,10 @@ void registerRender(CLI::App& app) {
                 "sunlight through windows by way of the surfaces it lands on: photons from the "
                 "sun through the panes, each path vertex connected to one (unbiased; "
                 "docs/rendering.md)");
+  cmd->add_flag("--lamp-photons", a->lamp_photons,
+                "lamp light by way of the surfaces near a lamp it lands on: photons from every "
+                "point and spot light, those within half a metre kept, each path vertex "
+                "connected to one (unbiased; docs/rendering.md)");
   cmd->add_option("--camera-end", a->camera_end,
                   "camera.json of the pose when the exposure ends (motion blur); the pose of "
                   "--camera is where it starts");

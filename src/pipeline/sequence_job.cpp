@@ -309,7 +309,11 @@ nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const Render
   if (opt.sun_photons)
     m["render"]["sun_photons"] =
         "sunlight through panes connected by way of the surfaces it "
-        "lands on (render/path_tracer.cpp, SunPhotons)";
+        "lands on (render/path_tracer.cpp, Photons)";
+  if (opt.lamp_photons)
+    m["render"]["lamp_photons"] =
+        "point and spot lights' light connected by way of the surfaces near them it lands on "
+        "(render/path_tracer.cpp, Photons)";
   if (!opt.denoise) {
     m["render"]["denoise"] = "off";
   } else if (a.denoiser == "learned") {
@@ -1016,6 +1020,7 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   applyDenoiseParams(a.denoise_params, opt.denoise_options, "", "--denoise-params");
   opt.light_cache = a.light_cache;
   opt.sun_photons = a.sun_photons;
+  opt.lamp_photons = a.lamp_photons;
   stopIfSignalled("before the first frame");
   SequenceJobResult result;
   const auto t1 = std::chrono::steady_clock::now();

@@ -54,6 +54,7 @@ struct SequenceJob {
   bool denoise = true;
   bool light_cache = true;
   bool sun_photons = true;
+  bool lamp_photons = true;
   std::string denoiser = "atrous";    ///< atrous or learned (render/neural_denoise.h)
   /// "key=value,..." over the à-trous filter's defaults (applyDenoiseParams); empty = defaults
   std::string denoise_params;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -351,6 +353,177 @@ WorldTriangle worldTriangle(const Object& o, const Mesh& mesh, const Tri& t) {
   return w;
 }
 
+
+/// A glass object is a window pane only when it is simple: at most this many triangles.
+/// Glassware, vases and lamp shades of furniture models (hundreds of triangles) are no way to
+/// the sky, and the portal pick is linear in the portals: a catalog apartment's glasses made
+/// its frames 80x slower when they counted.
+constexpr size_t kMaxPaneTriangles = 64;
+
+/// A probe of the scene from one side of a plane: ray k of `count` leaving the plane's
+/// triangles (a point by area, R2 sequence) cosine-distributed about unit normal n (Fibonacci
+/// lattice). Deterministic: a fixed point set and no random state.
+struct PlaneProbe {
+  const std::vector<WorldTriangle>& triangles;
+  const std::vector<size_t>& members;
+  float area;
+
+  Vec3f point(int k) const {
+    const float u0 = std::fmod(0.5f + 0.7548776662f * float(k), 1.f);
+    const float u1 = std::fmod(0.5f + 0.5698402910f * float(k), 1.f);
+    const float u2 = std::fmod(0.5f + 0.6180339887f * float(k), 1.f);
+    float target = u0 * area;
+    size_t pick = members.back();
+    for (size_t i : members)
+      if ((target -= triangles[i].area) < 0.f) {
+        pick = i;
+        break;
+      }
+    return triangles[pick].point({u1, u2});
+  }
+};
+
+/// Direction k of `count` cosine-distributed about unit n (Fibonacci lattice).
+Vec3f cosineLattice(const Vec3f& n, int k, int count) {
+  const Vec3f a = std::abs(n.x()) < 0.9f ? Vec3f::UnitX() : Vec3f::UnitY();
+  const Vec3f b1 = n.cross(a).normalized(), b2 = n.cross(b1);
+  const float r = std::sqrt((float(k) + 0.5f) / float(count));
+  const float phi = 2.39996323f * float(k);
+  return (b1 * (r * std::cos(phi)) + b2 * (r * std::sin(phi)) +
+          n * std::sqrt(std::max(0.f, 1.f - r * r)))
+      .normalized();
+}
+
+/// The first surface along o + t d: false when the ray leaves the scene. With `through_glass`
+/// it goes straight through thin dielectrics (at most 8). `p` and `n` receive the hit point
+/// and its unit geometric normal.
+bool firstSurface(const EmbreeScene& es, Vec3f o, const Vec3f& d, bool through_glass, Vec3f& p,
+                  Vec3f& n) {
+  RTCIntersectContext ictx;
+  rtcInitIntersectContext(&ictx);
+  for (int glass = 0; glass <= 8; ++glass) {
+    RTCRayHit rh;
+    rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
+    rh.ray.dir_x = d.x(), rh.ray.dir_y = d.y(), rh.ray.dir_z = d.z();
+    rh.ray.tnear = 0.f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0.f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(es.handle(), &ictx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    const int object = es.objectOf(rh.hit);
+    p = o + rh.ray.tfar * d;
+    n = es.worldNormal(object, Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+    if (!through_glass || es.object(object).bsdf.type != BsdfType::ThinDielectric) return true;
+    o = p + n * (n.dot(d) > 0.f ? 1.f : -1.f) * (1e-4f * (1.f + p.cwiseAbs().maxCoeff()));
+  }
+  return true;
+}
+
+/// The faces of a simple glass object (world triangles) that are windows onto the sky: the
+/// sky portals and the sun photons' starting faces (lights.h, path_tracer.cpp Photons), each
+/// triangle's normal turned to face the inside. The triangles are grouped into planes (normals
+/// within 0.8 degrees, offsets within 0.25 mm); a plane with at least a quarter of the largest
+/// one's area is a face. A flat pane is one face that looks both ways; a glass sheet modelled
+/// as a thin box (Sweet Home 3D's windows, 1 mm thick) has two large faces, each looking away
+/// from the box's centre, and four narrow edges. A face is a window when, looking out on such
+/// a side:
+///   - it sees the sky: of kProbeRays rays leaving it, at least kSkyShare hit nothing, panes
+///     included. That is the outer face of a window's outermost glass: its inner face, the
+///     glass of a second glazing behind it, a cabinet's glass door and a glass table top
+///     indoors see walls or other glass (their samples would find the sky only through the
+///     outer face, which already offers those directions, and a photon starting on an inner
+///     face is stopped by the outer one);
+///   - and what lies behind it is enclosed: from the first surfaces kInsideRays rays into the
+///     other side meet (straight through glass), at most kOpenShare of kInsideRays x
+///     kBackRays rays see the sky directly (glass counting as opaque). A room sees the sky only
+///     through its windows; glass standing in the open (a pane before a wall under the sky)
+///     is no window, and sky samples sent through it would be wasted on a wall the whole sky
+///     lights.
+std::vector<PortalTriangle> skyFacingFaces(const EmbreeScene& es,
+                                           const std::vector<WorldTriangle>& glass) {
+  constexpr float kCosSamePlane = 0.9999f, kSamePlane = 2.5e-4f;
+  constexpr int kProbeRays = 64, kInsideRays = 16, kBackRays = 8;
+  constexpr float kSkyShare = 0.125f, kOpenShare = 0.1f;
+  struct Plane {
+    Vec3f normal, point;
+    float area = 0.f;
+    std::vector<size_t> triangles;
+  };
+  std::vector<Plane> planes;
+  Vec3f centre = Vec3f::Zero();
+  float total_area = 0.f;
+  for (size_t i = 0; i < glass.size(); ++i) {
+    const WorldTriangle& t = glass[i];
+    if (!(t.area > 0.f)) continue;
+    centre += t.area * (t.p0 + (t.e1 + t.e2) * (1.f / 3.f));
+    total_area += t.area;
+    auto on = [&](const Plane& pl) {
+      if (std::abs(pl.normal.dot(t.normal)) < kCosSamePlane) return false;
+      for (const Vec3f& q : {t.p0, Vec3f(t.p0 + t.e1), Vec3f(t.p0 + t.e2)})
+        if (std::abs(pl.normal.dot(q - pl.point)) > kSamePlane) return false;
+      return true;
+    };
+    auto it = std::find_if(planes.begin(), planes.end(), on);
+    if (it == planes.end()) {
+      planes.push_back({t.normal, t.p0, 0.f, {}});
+      it = planes.end() - 1;
+    }
+    it->area += t.area;
+    it->triangles.push_back(i);
+  }
+  std::vector<PortalTriangle> out;
+  if (!(total_area > 0.f)) return out;
+  centre /= total_area;
+  float largest = 0.f;
+  for (const Plane& pl : planes) largest = std::max(largest, pl.area);
+  auto offset = [](const Vec3f& q, const Vec3f& n) {
+    return Vec3f(q + n * (2e-4f * (1.f + q.cwiseAbs().maxCoeff())));
+  };
+  for (const Plane& pl : planes) {
+    if (pl.area < 0.25f * largest) continue;
+    const PlaneProbe probe{glass, pl.triangles, pl.area};
+    // the sides to look from: away from the object's centre (both for a flat pane)
+    const float centre_side = pl.normal.dot(centre - pl.point);
+    std::vector<Vec3f> sides;
+    if (centre_side <= kSamePlane) sides.push_back(pl.normal);
+    if (centre_side >= -kSamePlane) sides.push_back(-pl.normal);
+    for (const Vec3f& n : sides) {
+      Vec3f p, ng;
+      int sky = 0;
+      for (int k = 0; k < kProbeRays; ++k)
+        sky += !firstSurface(es, offset(probe.point(k), n), cosineLattice(n, k, kProbeRays),
+                             false, p, ng);
+      if (sky < static_cast<int>(kSkyShare * kProbeRays)) continue;
+      int open = 0;
+      for (int k = 0; k < kInsideRays; ++k) {
+        const Vec3f d = cosineLattice(-n, k, kInsideRays);
+        if (!firstSurface(es, offset(probe.point(k), -n), d, true, p, ng)) {
+          open += kBackRays;  // out into the open on the far side too
+          continue;
+        }
+        const Vec3f facing = ng.dot(d) < 0.f ? ng : Vec3f(-ng);
+        Vec3f q, nq;
+        for (int j = 0; j < kBackRays; ++j)
+          open += !firstSurface(es, offset(p, facing),
+                                cosineLattice(facing, k * kBackRays + j, kInsideRays * kBackRays),
+                                false, q, nq);
+      }
+      if (open > static_cast<int>(kOpenShare * kInsideRays * kBackRays)) continue;
+      for (size_t i : pl.triangles) {
+        PortalTriangle t = glass[i];
+        if (t.normal.dot(n) > 0.f) t.normal = -t.normal;  // facing the inside
+        out.push_back(t);
+      }
+      break;
+    }
+  }
+  return out;
+}
 }  // namespace
 
 void EmbreeScene::buildLights(const Scene& scene) {
@@ -369,26 +542,19 @@ void EmbreeScene::buildLights(const Scene& scene) {
       triangles.push_back(e);
     }
   }
-  // window panes: skies are also sampled through them (lights.h, sky portals), at their rest
-  // placement (a moving pane would only make the portal less apt, never the image biased);
-  // SceneLights drops degenerate triangles. A pane is flat and simple: a thin-glass object of
-  // at most kMaxPaneTriangles triangles in one plane. Glassware, glass table tops and vases of
-  // furniture models (thousands of triangles, or boxes) are no way to the sky, and the portal
-  // pick is linear in the portals: a catalog apartment's glasses made its frames 80x slower.
-  constexpr size_t kMaxPaneTriangles = 64;
+  // window panes: skies are also sampled through them (lights.h, sky portals), and sun photons
+  // start on them, at their rest placement (a moving pane would only make the portal less apt,
+  // never the image biased); SceneLights drops degenerate triangles. See skyFacingFaces.
   std::vector<PortalTriangle> portals;
   for (const Object& o : scene.objects) {
     const Mesh& mesh = scene.meshes[o.mesh];
     if (scene.materials[o.material].type != MaterialType::ThinDielectric || mesh.isSphere() ||
         mesh.triangles.size() > kMaxPaneTriangles)
       continue;
-    std::vector<PortalTriangle> pane;
-    for (const Tri& t : mesh.triangles) pane.push_back(worldTriangle(o, mesh, t));
-    bool flat = true;
-    for (const PortalTriangle& t : pane)  // every vertex within 1 mm of the first's plane
-      for (const Vec3f& q : {t.p0, Vec3f(t.p0 + t.e1), Vec3f(t.p0 + t.e2)})
-        flat = flat && std::abs(pane.front().normal.dot(q - pane.front().p0)) <= 1e-3f;
-    if (flat) portals.insert(portals.end(), pane.begin(), pane.end());
+    std::vector<WorldTriangle> glass;
+    for (const Tri& t : mesh.triangles) glass.push_back(worldTriangle(o, mesh, t));
+    const std::vector<PortalTriangle> faces = skyFacingFaces(*this, glass);
+    portals.insert(portals.end(), faces.begin(), faces.end());
   }
   lights_ = std::make_unique<SceneLights>(scene, std::move(triangles), std::move(portals));
 }

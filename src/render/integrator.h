@@ -42,6 +42,11 @@ struct RenderOptions {
   /// path vertex also connects to one of the sunlit points they found, weighed by MIS against
   /// finding that point by BSDF sampling. Unbiased; a no-op without a sun or panes.
   bool sun_photons = false;
+  /// Lamp light by way of the surfaces near the lamp it lands on (path_tracer.cpp, "lamp
+  /// photons"): each frame traces photons from every point and spot light, keeps those that
+  /// land within half a metre (a lamp's own shade, back plate or reflector), and every path
+  /// vertex also connects to one of them, weighed by MIS. Unbiased; a no-op without such lights.
+  bool lamp_photons = false;
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7
   /// and sigma_color 1-8 at 32 spp: 3 and 2 gave the lowest RMSE, 0.00465 vs 0.00565 for the
   /// filter's generic defaults).

@@ -278,6 +278,29 @@ Vec3f SceneLights::SunView::direction(const Eigen::Vector2f& u) const {
       .normalized();
 }
 
+float SceneLights::LampView::falloff(const Vec3f& d) const {
+  return spot ? smoothstep(cos_outer, cos_inner, direction.dot(d)) : 1.f;
+}
+
+std::vector<SceneLights::LampView> SceneLights::lamps() const {
+  std::vector<LampView> out;
+  for (size_t i = 0; i < analytic_.size(); ++i) {
+    const Analytic& a = analytic_[i];
+    if (a.type != LightType::Point && a.type != LightType::Spot) continue;
+    LampView v;
+    v.pick = groups_.size() + i;
+    v.position = a.position;
+    v.direction = a.direction;
+    v.rgb = a.rgb;
+    v.spot = a.type == LightType::Spot;
+    v.cos_outer = a.cos_outer;
+    v.cos_inner = a.cos_inner;
+    v.max_distance = a.max_distance;
+    out.push_back(v);
+  }
+  return out;
+}
+
 std::optional<SceneLights::SunView> SceneLights::firstSun() const {
   for (size_t i = 0; i < analytic_.size(); ++i) {
     const Analytic& a = analytic_[i];
@@ -357,7 +380,10 @@ float SceneLights::portalPick(size_t i, const Vec3f& p) const {
   const Vec3f w = t.p0 + (t.e1 + t.e2) * (1.f / 3.f) - p;
   const float d2 = w.squaredNorm();
   if (!(d2 > 0.f)) return 0.f;
-  const float cos = std::abs(t.normal.dot(w)) / std::sqrt(d2);
+  // a receiver on the sky's side (the ground outside, a facade) sees the sky itself: directions
+  // through the window would lead it into the building
+  if (t.normal.dot(w) >= 0.f) return 0.f;
+  const float cos = -t.normal.dot(w) / std::sqrt(d2);
   return t.area * cos / std::max(d2, t.area);
 }
 

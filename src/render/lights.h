@@ -14,14 +14,15 @@
 // over the upper hemisphere, an environment map from a table of its texels' luminance over the
 // sphere (sky.h), each with the same pdf for escaped rays (environmentRadiance).
 // Sky portals: indoors, nearly every direction those tables choose ends on a wall; the sky is
-// seen only through the windows. When the scene has window panes (thin dielectrics), half of a
-// sky's samples go through them instead: a pane triangle picked by the solid angle it roughly
-// subtends at the receiver (area x |cos| / d^2), a uniform point on it, the direction to it. The
-// sky's pdf is the mixture of both strategies, p = (1 - s) p_sky(d) + s p_portal(d | receiver),
-// with p_portal summed over the pane triangles the ray crosses (dist^2 / (area |cos|) each, times
+// seen only through the windows. When the scene has windows (the faces of thin dielectrics that
+// see the sky from an enclosed inside, embree_scene.cpp), half of a sky's samples for a receiver
+// inside go through them instead: a window triangle picked by the solid angle it roughly
+// subtends there (area x |cos| / d^2), a uniform point on it, the direction to it. The sky's pdf
+// is the mixture of both strategies, p = (1 - s) p_sky(d) + s p_portal(d | receiver), with
+// p_portal summed over the window triangles the ray crosses (dist^2 / (area |cos|) each, times
 // its pick probability), in `sample` and for escaped rays alike, so the estimate stays unbiased
-// whatever the panes (s = 1/2 where some pane faces the receiver, else 0). Suns are not sampled
-// through portals: their cone is already tiny.
+// whatever the windows (s = 1/2 for a receiver on the inside of some window, else 0).
+// Suns are not sampled through portals: their cone is already tiny.
 //
 // Conventions: `sample` returns the radiance arriving at p from the chosen point and the pdf of
 // choosing it (light pick x solid-angle pdf). Delta lights (point, spot) have no solid-angle pdf:
@@ -73,7 +74,7 @@ struct EmissiveTriangle : WorldTriangle {
 };
 
 /// A triangle of a window pane, through which skies are also sampled (see above); its normal
-/// may face either side.
+/// faces the inside: receivers on its other side (outdoors) do not sample through it.
 using PortalTriangle = WorldTriangle;
 
 struct LightSample {
@@ -157,6 +158,19 @@ class SceneLights {
   };
   /// The first sun that is on, if any.
   std::optional<SunView> firstSun() const;
+  /// A point or spot light as `sample` sees it: its pick entry, position, intensity (W/sr)
+  /// and, for a spot, its cone (sample's falloff: 1 inside cos_inner, 0 outside cos_outer).
+  struct LampView {
+    size_t pick = 0;
+    Vec3f position = Vec3f::Zero(), direction = Vec3f::UnitZ(), rgb = Vec3f::Zero();
+    bool spot = false;
+    float cos_outer = -1.f, cos_inner = -1.f;
+    float max_distance = 0.f;  ///< 0: unlimited
+    /// The spot falloff along unit direction d from the light (1 for a point light).
+    float falloff(const Vec3f& d) const;
+  };
+  /// The point and spot lights that are on, in pick order.
+  std::vector<LampView> lamps() const;
   /// The solid-angle pdf with which a sky's sample for a receiver at p chooses direction d (the
   /// mixture above, without the light pick), for tests.
   float skyPdf(size_t analytic_index, const Vec3f& p, const Vec3f& d) const;

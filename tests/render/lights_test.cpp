@@ -14,6 +14,7 @@
 #include "render/sky.h"
 #include "scene/primitives.h"
 #include "emissive_quad.h"
+#include "../box_mesh.h"
 
 namespace inet {
 namespace {
@@ -401,9 +402,14 @@ TEST(SkyPortal, MixturePdfIntegratesToOneAndAgreesWithSample) {
 }
 
 /// floorScene() under an opaque black ceiling at z = 1.5 with a 0.5 m square hole above the
-/// origin, closed by a window pane, under a uniform sky of radiance L.
-Scene windowedCeiling(float L) {
+/// origin, closed by a window pane, under a uniform sky of radiance L. The pane is a quad, or
+/// with `thin_box` a glass sheet modelled as a 1 mm box (as Sweet Home 3D's windows are) on the
+/// ceiling's plane.
+Scene windowedCeiling(float L, bool thin_box = false) {
   Scene s = floorScene();
+  Mesh box = makePrimitive("box", {}, "t", "box");
+  box.id = "box";
+  s.meshes.push_back(box);
   Material black;
   black.id = "ceiling";
   black.albedo = Vec3f::Zero();
@@ -413,17 +419,19 @@ Scene windowedCeiling(float L) {
   glass.ior = 1.5f;
   s.materials.push_back(black);
   s.materials.push_back(glass);
-  auto quad = [&](const char* name, double x0, double x1, double y0, double y1, int material) {
+  auto quad = [&](const char* name, double x0, double x1, double y0, double y1, int material,
+                  double thickness = 0) {
     Mat4 T = Mat4::Identity();
-    T.diagonal() << x1 - x0, y1 - y0, 1, 1;
+    T.diagonal() << x1 - x0, y1 - y0, thickness > 0 ? thickness : 1, 1;
     T.block<3, 1>(0, 3) = Vec3(0.5 * (x0 + x1), 0.5 * (y0 + y1), 1.5);
-    s.objects.push_back(Object::make(name, 0, material, T, 22, int(s.objects.size()) + 1));
+    s.objects.push_back(Object::make(name, thickness > 0 ? 1 : 0, material, T, 22,
+                                     int(s.objects.size()) + 1));
   };
   quad("left", -100, -0.25, -100, 100, 1);
   quad("right", 0.25, 100, -100, 100, 1);
   quad("front", -0.25, 0.25, 0.25, 100, 1);
   quad("back", -0.25, 0.25, -100, -0.25, 1);
-  quad("pane", -0.25, 0.25, -0.25, 0.25, 2);
+  quad("pane", -0.25, 0.25, -0.25, 0.25, 2, thin_box ? 0.001 : 0);
   Light sky;
   sky.name = "sky";
   sky.type = LightType::Sky;
@@ -438,19 +446,28 @@ Scene windowedCeiling(float L) {
 // sphere to be hit.
 TEST(SkyPortal, FloorUnderAWindowGetsTheSkyThroughItUnbiased) {
   const float L = 2.f;
-  double E = 0;
+  // E[k]: the integral with the glass crossed k times (a pane: once; a thin box: twice)
+  double E[3] = {0, 0, 0};
   const int n = 400;
   const double side = 0.5, h = 1.5;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double x = -side / 2 + side * (i + 0.5) / n, y = -side / 2 + side * (j + 0.5) / n;
       const double r2 = x * x + y * y + h * h, c = h / std::sqrt(r2);
-      E += L * paneTransmission(c) * c * c / r2 * (side * side / (double(n) * n));
+      const double dE = L * c * c / r2 * (side * side / (double(n) * n));
+      E[1] += dE * paneTransmission(c);
+      E[2] += dE * paneTransmission(c) * paneTransmission(c);
     }
-  const double expected = kAlbedo / M_PI * E;
-  const double got = floorRadiance(windowedCeiling(L), 0, 0, 1024);
-  std::printf("floor under a window: %.6f, expected %.6f\n", got, expected);
-  EXPECT_NEAR(got, expected, 0.01 * expected);
+  for (bool thin_box : {false, true}) {
+    const Scene s = windowedCeiling(L, thin_box);
+    EXPECT_EQ(EmbreeScene(s).lights().portalCount(), 2u)
+        << (thin_box ? "the box's upper face" : "the quad") << " is the portal";
+    const double expected = kAlbedo / M_PI * E[thin_box ? 2 : 1];
+    const double got = floorRadiance(s, 0, 0, 1024);
+    std::printf("floor under a window (%s): %.6f, expected %.6f\n", thin_box ? "thin box" : "pane",
+                got, expected);
+    EXPECT_NEAR(got, expected, 0.01 * expected) << (thin_box ? "thin box" : "pane");
+  }
 }
 
 }  // namespace
@@ -459,9 +476,9 @@ TEST(SkyPortal, FloorUnderAWindowGetsTheSkyThroughItUnbiased) {
 namespace inet {
 namespace {
 
-// Only flat, simple glass is a way to the sky: a window quad is a portal, a glass box (a table
-// top, a vase's many triangles) is not, however it is labelled.
-TEST(SkyPortal, OnlyFlatPanesArePortals) {
+// Only simple glass that sees the sky is a way to it: a window quad is a portal, a glass box
+// under it (a table top) is not, however it is labelled.
+TEST(SkyPortal, OnlyGlassThatSeesTheSkyIsAPortal) {
   Scene s = paneOverFloor();  // a window quad (2 triangles) at z = 1.5
   const int glass = static_cast<int>(s.materials.size()) - 1;
   s.meshes.push_back(makePrimitive("box", {}, "test", "mesh"));
@@ -476,17 +493,101 @@ TEST(SkyPortal, OnlyFlatPanesArePortals) {
   s.lights = {sky};
   const EmbreeScene es(s);
   EXPECT_EQ(es.lights().portalCount(), 2u);
-  // a flat glass object of too many triangles (a finely tessellated disc) is no pane either
+  // a flat glass object of too many triangles (a finely tessellated sheet) is no pane either,
+  // even above the pane, in the open
   Mesh fine;
   fine.id = "fine";
   for (int i = 0; i <= 100; ++i) fine.positions.push_back(Vec3f(float(i) / 100, 0, 0));
   for (int i = 0; i <= 100; ++i) fine.positions.push_back(Vec3f(float(i) / 100, 1, 0));
   for (uint32_t i = 0; i < 100; ++i) fine.triangles.push_back(Tri(i, i + 1, i + 102));
   s.meshes.push_back(fine);
-  s.objects.push_back(Object::make("fine_glass", int(s.meshes.size()) - 1, glass,
-                                   Mat4::Identity(), 40, 4));
+  Mat4 above = Mat4::Identity();
+  above(2, 3) = 2.0;
+  s.objects.push_back(Object::make("fine_glass", int(s.meshes.size()) - 1, glass, above, 40, 4));
   const EmbreeScene es2(s);
   EXPECT_EQ(es2.lights().portalCount(), 2u);
+}
+
+// A closed room 4 x 3 x 2.5 m with a 1 x 1 m window in its east wall (x from 2 to 2.1), glazed
+// twice as Sweet Home 3D's windows are: two glass sheets, each a 1 mm box, 6 cm apart. Of all
+// the glass only the outer sheet's outer face sees the sky: it is the portal (2 triangles on
+// the plane x = 2.0805); the sheets' other faces, a glass cabinet door and a glass table top
+// inside see walls or glass. The same window glazed once with a flat quad has that quad.
+TEST(SkyPortal, AWindowsPortalIsItsOuterGlassFace) {
+  auto room = [](bool thin_boxes) {
+    Scene s;
+    Mesh walls;
+    walls.id = "walls";
+    const double t = 0.1;
+    auto slab = [&](Vec3 lo, Vec3 hi) { test::appendBox(walls, 0.5 * (lo + hi), hi - lo); };
+    slab(Vec3(-2 - t, -1.5 - t, -t), Vec3(2 + t, 1.5 + t, 0));       // floor
+    slab(Vec3(-2 - t, -1.5 - t, 2.5), Vec3(2 + t, 1.5 + t, 2.5 + t));  // ceiling
+    slab(Vec3(-2 - t, -1.5, 0), Vec3(-2, 1.5, 2.5));
+    slab(Vec3(-2, -1.5 - t, 0), Vec3(2, -1.5, 2.5));
+    slab(Vec3(-2, 1.5, 0), Vec3(2, 1.5 + t, 2.5));
+    slab(Vec3(2, -1.5, 0), Vec3(2 + t, 1.5, 0.75));  // the east wall round the window
+    slab(Vec3(2, -1.5, 1.75), Vec3(2 + t, 1.5, 2.5));
+    slab(Vec3(2, -1.5, 0.75), Vec3(2 + t, -0.5, 1.75));
+    slab(Vec3(2, 0.5, 0.75), Vec3(2 + t, 1.5, 1.75));
+    Mesh glass_box = makePrimitive("box", {}, "t", "box");
+    glass_box.id = "glass_box";
+    Mesh quad = makePrimitive("quad", {}, "t", "quad");
+    quad.id = "quad";
+    s.meshes = {walls, glass_box, quad};
+    Material plaster, glass;
+    plaster.id = "plaster";
+    plaster.albedo = Vec3f::Constant(0.6f);
+    glass.id = "glass";
+    glass.type = MaterialType::ThinDielectric;
+    glass.ior = 1.5f;
+    s.materials = {plaster, glass};
+    s.objects.push_back(Object::make("walls", 0, 0, Mat4::Identity(), 1, 1));
+    auto glassBox = [&](const char* name, Vec3 centre, Vec3 size, int nyu40) {
+      const Mat4 T = (Eigen::Translation3d(centre) * Eigen::Scaling(size)).matrix();
+      s.objects.push_back(Object::make(name, 1, 1, T, nyu40, int(s.objects.size()) + 1));
+    };
+    if (thin_boxes) {
+      glassBox("outer_sheet", Vec3(2.08, 0, 1.25), Vec3(0.001, 1, 1), 9);
+      glassBox("inner_sheet", Vec3(2.02, 0, 1.25), Vec3(0.001, 1, 1), 9);
+    } else {
+      Mat4 P = Mat4::Identity();  // the unit quad (normal +z) turned to face +x
+      P.block<3, 3>(0, 0) << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+      P.block<3, 1>(0, 3) = Vec3(2.0805, 0, 1.25);
+      s.objects.push_back(Object::make("pane", 2, 1, P, 9, int(s.objects.size()) + 1));
+    }
+    glassBox("cabinet_door", Vec3(-1.5, 1.2, 1.0), Vec3(0.6, 0.002, 0.8), 3);
+    glassBox("table_top", Vec3(0, 0, 0.75), Vec3(1.2, 0.8, 0.01), 7);
+    Light sky;
+    sky.name = "sky";
+    sky.type = LightType::Sky;
+    s.lights = {sky};
+    return s;
+  };
+  for (bool thin_boxes : {true, false}) {
+    const EmbreeScene es(room(thin_boxes));
+    const SceneLights& lights = es.lights();
+    ASSERT_EQ(lights.portalCount(), 2u) << (thin_boxes ? "two thin boxes" : "a quad");
+    float area = 0.f;
+    for (size_t i = 0; i < lights.portalCount(); ++i) {
+      const PortalTriangle& p = lights.portal(i);
+      area += p.area;
+      for (const Vec3f& q : {p.p0, Vec3f(p.p0 + p.e1), Vec3f(p.p0 + p.e2)})
+        EXPECT_NEAR(q.x(), 2.0805f, 1e-4f) << "the outer sheet's outer face";
+      EXPECT_LT(p.normal.x(), -0.999f) << "facing the inside";
+    }
+    EXPECT_NEAR(area, 1.f, 1e-4f);
+    // a receiver inside samples the sky through the window as well (the mixture's pdf toward
+    // it is well above the uniform sky's own), one outside does not
+    const float own = 1.f / (4.f * float(M_PI));
+    EXPECT_GT(lights.skyPdf(0, Vec3f(1.0f, 0.f, 1.25f), Vec3f::UnitX()), 2.f * own);
+    EXPECT_FLOAT_EQ(lights.skyPdf(0, Vec3f(4.0f, 0.f, 1.25f), -Vec3f::UnitX()), own);
+  }
+  // the same sheets standing in the open before a wall the whole sky lights: no window
+  Scene open = room(true);
+  open.objects[0] = Object::make(
+      "wall", 1, 0,
+      (Eigen::Translation3d(3.0, 0, 1.25) * Eigen::Scaling(Vec3(0.1, 40, 40))).matrix(), 1, 1);
+  EXPECT_EQ(EmbreeScene(open).lights().portalCount(), 0u) << "glass in the open";
 }
 
 }  // namespace
