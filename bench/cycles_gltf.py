@@ -18,9 +18,9 @@ importer's texture nodes:
   translucent    Diffuse (albedo) + Translucent (transmittance): exact
   emission       added on the front side only (our emitters are one-sided)
 With --materials gltf the importer's Principled materials are rendered as they are.
-Lights: the importer's point, spot and sun lights (683 lm/W, as we export), made point-like
-(radius 0), spots given the blend that makes Cycles' cone edge our smoothstep exactly, and the
-sun given its angular diameter, both from the light's extras. The sky: the
+Lights: the importer's point, spot and sun lights (683 lm/W, as we export): points, or bulbs of
+the radius in their extras; spots given the blend that makes Cycles' cone edge our smoothstep
+exactly, and the sun given its angular diameter, both from the light's extras. The sky: the
 equirectangular EXR the export baked (scene extras "sky_image") as the world.
 Camera: --camera (camera.json: width, height, fx, fy, cx, cy, cam_to_world or
 position/look_at/up) or else the file's camera. Sampling: fixed spp, no adaptive sampling, no
@@ -209,7 +209,9 @@ def setup_lights(scene):
         n += 1
         ld = ob.data
         if ld.type in ("POINT", "SPOT"):
-            ld.shadow_soft_size = 0.0
+            # a bulb's radius: Cycles draws such a light as a disk of that radius facing the
+            # shaded point, I / (d^2 + r^2), as we do (Light::radius); else a point
+            ld.shadow_soft_size = float(ld.get("radius", 0.0))
         if ld.type == "SPOT" and "cone_deg" in ld:
             # Cycles: smoothstep over (1 - cos(half angle)) x blend in cosine; ours: smoothstep
             # from cos(cone) to cos(cone - falloff). This blend makes the two the same curve.

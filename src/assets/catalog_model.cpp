@@ -150,6 +150,10 @@ std::vector<Light> lampLights(const CatalogPiece& piece, const std::string& cate
       l.color = lum > 0 ? Vec3f(lin / lum) : Vec3f::Ones();
     }
     l.intensity = static_cast<float>(lamp_total_w_sr / double(piece.lights.size()));
+    // the bulb: half the catalog's diameter (4-6 cm for most lamps), 5 cm when not given
+    constexpr double kDefaultBulbDiameterCm = 5.0;
+    l.radius = static_cast<float>((src.diameter_cm > 0 ? src.diameter_cm : kDefaultBulbDiameterCm) /
+                                  200.0);
     out.push_back(l);
   }
   return out;

@@ -629,6 +629,7 @@ class Builder {
     for (Light& l : lights) {
       ++report_.lights;
       l.position = (T * l.position.homogeneous()).head<3>();
+      l.radius *= float(std::cbrt(std::abs(T.block<3, 3>(0, 0).determinant())));  // as the model
       l.intensity = float(l.intensity * scale);
       l.on = p.power > 0;
       l.object = object;

@@ -340,6 +340,7 @@ class Builder {
       l.name =
           c.parts.lights.size() == 1 ? name + "_light" : fmt::format("{}_light_{}", name, i + 1);
       l.position = (T_world_model * l.position.homogeneous()).head<3>();
+      l.radius *= static_cast<float>(std::cbrt(std::abs(T_world_model.block<3, 3>(0, 0).determinant())));
       l.object = name;
       apt_.scene.lights.push_back(l);
     }

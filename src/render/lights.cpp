@@ -66,6 +66,7 @@ SceneLights::SceneLights(const Scene& scene, std::vector<EmissiveTriangle> trian
     a.direction = l.direction.normalized().cast<float>();
     a.rgb = l.rgbIntensity();
     a.max_distance = l.max_distance;
+    a.radius2 = l.radius * l.radius;
     // Suns: their irradiance; skies: the integral of their luminance over the directions they
     // shine from (an upper bound on the irradiance they give, within a factor 4 for a uniform
     // sky); the same weights relative to each other as the global pick had.
@@ -115,7 +116,7 @@ float SceneLights::importance(size_t k, const Vec3f& p) const {
     falloff = dist > 0.f ? smoothstep(a.cos_outer, a.cos_inner, a.direction.dot(-w / dist)) : 0.f;
   }
   // 1 cm: closer than that the estimate stops growing (a lamp's own socket)
-  return luminance(a.rgb) * falloff / std::max(dist2, 1e-4f);
+  return luminance(a.rgb) * falloff / std::max(dist2 + a.radius2, 1e-4f);
 }
 
 SceneLights::PickPoint SceneLights::pickAt(const Vec3f& p, const LightCache* cache) const {
@@ -262,7 +263,8 @@ bool SceneLights::sampleAnalytic(const Analytic& a, const Vec3f& p, const Eigen:
     falloff = smoothstep(a.cos_outer, a.cos_inner, a.direction.dot(-out.wi));
     if (falloff <= 0.f) return false;
   }
-  out.radiance = a.rgb * (falloff / dist2);
+  // a bulb of radius r: I / (d^2 + r^2), a disk of radius r facing p (Light::radius)
+  out.radiance = a.rgb * (falloff / (dist2 + a.radius2));
   out.pdf = 1.f;
   out.delta = true;
   return true;
@@ -296,6 +298,7 @@ std::vector<SceneLights::LampView> SceneLights::lamps() const {
     v.cos_outer = a.cos_outer;
     v.cos_inner = a.cos_inner;
     v.max_distance = a.max_distance;
+    v.radius2 = a.radius2;
     out.push_back(v);
   }
   return out;

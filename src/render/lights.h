@@ -166,6 +166,7 @@ class SceneLights {
     bool spot = false;
     float cos_outer = -1.f, cos_inner = -1.f;
     float max_distance = 0.f;  ///< 0: unlimited
+    float radius2 = 0.f;       ///< the bulb's radius squared: its light is I / (d^2 + this)
     /// The spot falloff along unit direction d from the light (1 for a point light).
     float falloff(const Vec3f& d) const;
   };
@@ -185,6 +186,7 @@ class SceneLights {
     // two significant digits: a 0.3% error in the disk's solid angle and so in its light)
     float one_minus_cos_max = 0.f;
     float max_distance = 0.f;
+    float radius2 = 0.f;  // point, spot: the bulb's radius squared (Light::radius)
     int sky = -1;  // Preetham sky: index into skies_ (-1: a uniform sky of radiance rgb)
     int envmap = -1;  // environment-map sky: index into envmaps_
   };

@@ -488,7 +488,7 @@ class PathTracer final : public Integrator {
           if (!land(ph, ray, rh, object, ng, travelled, lamp.pick)) continue;
           const float d2 = (ph.p - lamp.position).squaredNorm();
           if (!(d2 > 0.f)) continue;
-          ph.incident = lamp.rgb.cwiseProduct(T) * (falloff / d2);
+          ph.incident = lamp.rgb.cwiseProduct(T) * (falloff / (d2 + lamp.radius2));
         }
         ph.source = source_of[slot];
         live[slot] = 1;

@@ -473,6 +473,7 @@ class Exporter {
         break;
     }
     if (l.max_distance > 0) gl.range = l.max_distance;
+    if (l.radius > 0) ex["radius"] = num(l.radius);  // the bulb (Blender: shadow_soft_size)
     gl.extras = Value(std::move(ex));
     model_.lights.push_back(gl);
     n.extensions["KHR_lights_punctual"] =

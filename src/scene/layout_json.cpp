@@ -550,11 +550,11 @@ Light parseLight(const Reader& r, const json& j, const std::string& field,
   };
   if (type == "point") {
     l.type = LightType::Point;
-    r.object(j, field, {"name", "type", "position", "intensity"}, keys({"max_distance"}));
+    r.object(j, field, {"name", "type", "position", "intensity"}, keys({"max_distance", "radius"}));
   } else if (type == "spot") {
     l.type = LightType::Spot;
     r.object(j, field, {"name", "type", "position", "direction", "intensity", "cone_deg"},
-             keys({"falloff_deg", "max_distance"}));
+             keys({"falloff_deg", "max_distance", "radius"}));
   } else if (type == "sun") {
     l.type = LightType::Sun;
     r.object(j, field, {"name", "type", "direction", "intensity"}, keys({"angular_diameter_deg"}));
@@ -600,6 +600,7 @@ Light parseLight(const Reader& r, const json& j, const std::string& field,
         r.single(j["angular_diameter_deg"], dot(field, "angular_diameter_deg"));
   if (j.contains("max_distance"))
     l.max_distance = r.single(j["max_distance"], dot(field, "max_distance"));
+  if (j.contains("radius")) l.radius = r.single(j["radius"], dot(field, "radius"));
   if (j.contains("on")) {
     if (!j["on"].is_boolean())
       r.fail(dot(field, "on"), "expected true or false, got " + describe(j["on"]));

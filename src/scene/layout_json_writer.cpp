@@ -78,6 +78,7 @@ ojson lightToJson(const Light& l) {
   }
   if (l.type == LightType::Sun) j["angular_diameter_deg"] = jsonNumber(l.angular_diameter_deg);
   if (!directional) j["max_distance"] = jsonNumber(l.max_distance);
+  if (!directional && l.radius > 0.f) j["radius"] = jsonNumber(l.radius);
   j["on"] = l.on;
   if (!l.object.empty()) j["object"] = l.object;
   return j;

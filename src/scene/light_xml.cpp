@@ -181,8 +181,9 @@ std::string lightXmlText(const Scene& scene, const std::string& path) {
       out += fmt::format(" color=\"{}\" temperature_k=\"{}\"", vec(l.color), num(l.temperature_k));
     }
     if (l.type == LightType::Point || l.type == LightType::Spot)
-      out +=
-          fmt::format(" position=\"{}\" max_distance=\"{}\"", vec(l.position), num(l.max_distance));
+      out += fmt::format(" position=\"{}\" max_distance=\"{}\"{}", vec(l.position),
+                         num(l.max_distance),
+                         l.radius > 0.f ? fmt::format(" radius=\"{}\"", num(l.radius)) : "");
     if (l.type == LightType::Spot || l.type == LightType::Sun)
       out += fmt::format(" direction=\"{}\"", vec(l.direction));
     if (l.type == LightType::Spot)
@@ -282,6 +283,7 @@ LightSetup parseLightXml(const std::string& text, const std::string& path) {
     if (l.type == LightType::Point || l.type == LightType::Spot) {
       l.position = a.vec3("position");
       if (a.has("max_distance")) l.max_distance = a.single("max_distance");
+      if (a.has("radius")) l.radius = a.single("radius");
     }
     if (l.type == LightType::Spot || l.type == LightType::Sun) l.direction = a.vec3("direction");
     if (l.type == LightType::Spot) {

@@ -323,6 +323,8 @@ void Scene::validate(const std::string& where) const {
         !(l.angular_diameter_deg > 0.f && l.angular_diameter_deg < 30.f))
       throw InputError(where, field + ".angular_diameter_deg", "must be in (0, 30) degrees");
     if (!(l.max_distance >= 0.f)) throw InputError(where, field + ".max_distance", "must be >= 0");
+    if (!(l.radius >= 0.f && l.radius < 1e3f))
+      throw InputError(where, field + ".radius", "must be >= 0 (metres)");
     if (l.type == LightType::Sky && l.sky_model == SkyModel::Preetham)
       validatePreetham(l, where, field);
     if (l.type == LightType::Sky && l.sky_model == SkyModel::EnvMap)

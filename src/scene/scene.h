@@ -171,6 +171,12 @@ struct Light {
   float falloff_deg = 5.f;             ///< spot: width of the smooth edge inside the cone
   float angular_diameter_deg = 0.53f;  ///< sun: apparent diameter (the real sun: 0.53 deg)
   float max_distance = 0.f;            ///< point, spot: no light beyond this range (m); 0 = none
+  /// Point, spot: the radius r of the bulb (m): its light on a surface at distance d is
+  /// I / (d^2 + r^2), a glowing disk of radius r facing the surface (as Cycles draws a point
+  /// light with a radius), instead of growing without bound as I / d^2 near the centre; 0 =
+  /// an ideal point. Sweet Home 3D's lights have a diameter (lightSourceDiameter): a lamp
+  /// model's own parts often lie within it, millimetres from the centre.
+  float radius = 0.f;
   SkyModel sky_model = SkyModel::Uniform;  ///< sky
   float turbidity = 3.f;                   ///< Preetham sky: haze, 2 (very clear) .. 10 (hazy)
   /// Environment-map sky: the equirectangular (latitude-longitude) image; EXR is linear, PNG

@@ -72,6 +72,20 @@ TEST(Lights, PointLightInverseSquareAndCosine) {
   EXPECT_NEAR(floorRadiance(s, 1.5, 0), kAlbedo / M_PI * 5.0 * 2.0 / (d * d * d), 1e-3);
 }
 
+// A bulb of radius r: I / (d^2 + r^2), a disk facing the receiver (as Cycles draws a point light
+// with a radius); far away the same as a point. 5 cm under it the plain point's light would be
+// 5x as bright.
+TEST(Lights, ABulbsRadiusBoundsItsLightNearby) {
+  Scene s = floorScene();
+  Light l = pointLight(Vec3(0, 0, 0.05), 5.f);
+  l.radius = 0.1f;
+  s.lights = {l};
+  const double near = kAlbedo / M_PI * 5.0 / (0.05 * 0.05 + 0.01);
+  EXPECT_NEAR(floorRadiance(s, 0, 0), near, 1e-3 * near);
+  s.lights[0].position = Vec3(0, 0, 4);
+  EXPECT_NEAR(floorRadiance(s, 0, 0), kAlbedo / M_PI * 5.0 / (16.0 + 0.01), 1e-5);
+}
+
 TEST(Lights, RangeAndOnOff) {
   Scene s = floorScene();
   Light l = pointLight(Vec3(0, 0, 2), 5.f);

@@ -164,6 +164,7 @@ TEST(LayoutJson, EveryDoubleAndFloatRoundTripsExactly) {
   l.position = Vec3(awkward[0], awkward[3], awkward[4]);
   l.color = Vec3f(0.3f, 0.f, 1e30f);
   l.intensity = 0.1f;
+  l.radius = 0.1f + 0.2f;
   s.lights.push_back(l);
   const std::string text = layoutToJson(s);
   Scene back = parseLayout(text, "memory.json");
@@ -457,8 +458,10 @@ std::vector<BadLayout> objectCases() {
        "objects[0].name", "must not be empty"},
       {"negative_light", edited([](json& j) { j["lights"][0]["intensity"] = -1; }),
        "lights[0].intensity", ">= 0"},
-      {"light_unknown_key", edited([](json& j) { j["lights"][0]["radius"] = 0.1; }),
-       "lights[0].radius", "valid keys here: name, type, position, intensity"},
+      {"light_unknown_key", edited([](json& j) { j["lights"][0]["wattage"] = 60; }),
+       "lights[0].wattage", "valid keys here: name, type, position, intensity"},
+      {"negative_bulb_radius", edited([](json& j) { j["lights"][0]["radius"] = -0.01; }),
+       "('bulb').radius", ">= 0"},
       {"light_unknown_type", edited([](json& j) { j["lights"][0]["type"] = "laser"; }),
        "lights[0].type", "valid: point, spot, sun, sky"},
       {"light_cold_temperature", edited([](json& j) { j["lights"][0]["temperature_k"] = 10; }),

@@ -37,6 +37,7 @@ Scene litScene() {
   point.intensity = 4.5f;
   point.temperature_k = 2700;
   point.max_distance = 6;
+  point.radius = 0.025f;
   point.object = "floor";
   Light spot;
   spot.name = "spot";

@@ -130,6 +130,8 @@ inline void expectScenesEqual(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.color, y.color);
     EXPECT_EQ(x.intensity, y.intensity);
     EXPECT_EQ(x.temperature_k, y.temperature_k);
+    EXPECT_EQ(x.max_distance, y.max_distance);
+    EXPECT_EQ(x.radius, y.radius);
     EXPECT_EQ(x.on, y.on);
     EXPECT_EQ(x.object, y.object);
   }
