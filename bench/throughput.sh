@@ -11,7 +11,7 @@
 # DIR/aptN/camera.json, any width: scaled to WIDTH). Per apartment, into DIR/aptN/throughput/:
 #   cycles64_{0,1}   Cycles at 64 spp, two seeds (their difference gives its variance at 256)
 #   ref_{7,8}        ours at 256 spp, two seeds, no denoiser (our truth, noise taken out)
-#   one_sN           `render --denoise` with the light cache and sun photons (what `generate`
+#   one_sN           `render --denoise` with the light cache, sun and lamp photons (what `generate`
 #                    uses) at N spp: a single frame, whole process
 #   seq_sN           the last frame of a 12-frame `generate` sequence (default settings: temporal
 #                    reuse, the denoiser, every ground-truth pass) sliding 1 cm per frame to the
@@ -50,12 +50,12 @@ PY
   done
   for seed in 7 8; do
     [ -f "$d/ref_$seed.exr" ] || secs "$INET" render --layout "$layout" --camera "$d/camera.json" \
-      --spp 256 --threads 2 --max-bounces 9 --light-cache --sun-photons --seed "$seed" \
+      --spp 256 --threads 2 --max-bounces 9 --light-cache --sun-photons --lamp-photons --seed "$seed" \
       --out "$d/ref_$seed.exr" > "$d/ref_$seed.t"
   done
   for n in $SPPS; do
     [ -f "$d/one_s$n.exr" ] || secs "$INET" render --layout "$layout" --camera "$d/camera.json" \
-      --spp "$n" --threads 2 --max-bounces 9 --light-cache --sun-photons --denoise --seed 3 \
+      --spp "$n" --threads 2 --max-bounces 9 --light-cache --sun-photons --lamp-photons --denoise --seed 3 \
       --out "$d/one_s$n.exr" > "$d/one_s$n.t"
   done
   python3 "$HERE/camera_trajectory.py" "$d/camera.json" --frames 12 > "$d/trajectory.txt"

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/image.h"
+#include "render/renderer.h"
 
 namespace inet::test {
 
@@ -24,6 +25,19 @@ inline AgainstReference againstReference(const ImageF& img, const ImageF& ref) {
   }
   const double n = static_cast<double>(img.data.size());
   return {sum / ref_sum, std::sqrt(se / n) / (ref_sum / n)};
+}
+
+/// The RGB pass of a 48 x 36 view (focal 40 px) from `pose`: `options` (its estimators) with
+/// the given samples, seed and bounces.
+inline ImageF renderSmallRgb(const Renderer& r, const Pose& pose, RenderOptions options, int spp,
+                             uint64_t seed, int bounces = 4) {
+  options.spp = spp;
+  options.max_bounces = bounces;
+  options.seed = seed;
+  options.passes = static_cast<PassMask>(Pass::Rgb);
+  Frame f;
+  r.render(CameraIntrinsics::centred(48, 36, 40), pose, options, 0, f);
+  return f.rgb;
 }
 
 /// render() run with at most 1 and at most 2 threads.

@@ -158,18 +158,11 @@ TEST(LightCache, CachedPicksKeepTheMeanWithLessNoiseAndTheSameBytesOnAnyThreadCo
   sun.intensity = 350.f;
   s.lights = {lamp, sun};
   Renderer r(s);
-  const CameraIntrinsics K = CameraIntrinsics::centred(48, 36, 40);
   const Pose pose = Pose::lookAt(Vec3(-1.6, -1.1, 1.4), Vec3(1, 1, 0.8), Vec3::UnitZ());
   auto render = [&](int spp, bool cached, uint64_t seed) {
     RenderOptions opt;
-    opt.spp = spp;
-    opt.max_bounces = 4;
-    opt.seed = seed;
     opt.light_cache = cached;
-    opt.passes = static_cast<PassMask>(Pass::Rgb);
-    Frame f;
-    r.render(K, pose, opt, 0, f);
-    return f.rgb;
+    return test::renderSmallRgb(r, pose, opt, spp, seed);
   };
   const ImageF reference = render(1024, false, 99);
   const auto [plain_mean, plain_err] = test::againstReference(render(16, false, 1), reference);

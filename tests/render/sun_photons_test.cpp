@@ -89,18 +89,11 @@ class SunlitRoomView {
  public:
   explicit SunlitRoomView(bool double_glazed) : scene_(sunlitRoom(double_glazed)), r_(scene_) {}
   ImageF render(int spp, bool photons, uint64_t seed, int bounces = 4) const {
-    const CameraIntrinsics K = CameraIntrinsics::centred(48, 36, 40);
     const Pose pose = Pose::lookAt(Vec3(1.6, 0.9, 1.6), Vec3(-2, -0.3, 1.3), Vec3::UnitZ());
     RenderOptions opt;
-    opt.spp = spp;
-    opt.max_bounces = bounces;
-    opt.seed = seed;
     opt.light_cache = true;
     opt.sun_photons = photons;
-    opt.passes = static_cast<PassMask>(Pass::Rgb);
-    Frame f;
-    r_.render(K, pose, opt, 0, f);
-    return f.rgb;
+    return test::renderSmallRgb(r_, pose, opt, spp, seed, bounces);
   }
   /// Photons against plain path tracing: unbiased at 512 spp (1 %), and at 16 spp within 5 %
   /// in the mean and at most half the relative RMSE, against a 2048-spp reference.
@@ -193,20 +186,13 @@ Scene lampRoom() {
 TEST(LampPhotons, ALampsLightOffItsOwnPartsKeepsItsMeanWithLessNoise) {
   const Scene s = lampRoom();
   Renderer r(s);
-  const CameraIntrinsics K = CameraIntrinsics::centred(48, 36, 40);
   // toward the west wall, the ceiling round the lamp and the floor
   const Pose pose = Pose::lookAt(Vec3(1.7, 1.1, 1.3), Vec3(-2, -0.6, 1.5), Vec3::UnitZ());
   auto render = [&](int spp, bool photons, uint64_t seed) {
     RenderOptions opt;
-    opt.spp = spp;
-    opt.max_bounces = 4;
-    opt.seed = seed;
     opt.light_cache = true;
     opt.lamp_photons = photons;
-    opt.passes = static_cast<PassMask>(Pass::Rgb);
-    Frame f;
-    r.render(K, pose, opt, 0, f);
-    return f.rgb;
+    return test::renderSmallRgb(r, pose, opt, spp, seed);
   };
   const ImageF reference = render(4096, false, 99);
   const auto plain = test::againstReference(render(16, false, 1), reference);
