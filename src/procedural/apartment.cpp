@@ -217,6 +217,9 @@ class Builder {
           else
             m.uvs[i] = Vec2f(m.uvs[i].x() * around, m.uvs[i].y() * s.z()) / t;
         }
+      } else if (primitive == "fold") {  // u along the cloth (out and back: about x + 2y)
+        const float along = s.x() + 2.f * s.y();
+        for (Vec2f& uv : m.uvs) uv = Vec2f(uv.x() * along, uv.y() * s.z()) / t;
       } else {  // box and quad: quads of 4 vertices, uv (0,0) (1,0) (1,1) (0,1)
         for (size_t q = 0; q + 3 < m.positions.size(); q += 4) {
           const float a = (m.positions[q + 1] - m.positions[q]).norm() / t;

@@ -46,7 +46,7 @@ struct MaterialSpec {
 /// One labelled piece of a model: a unit primitive placed in the model frame.
 struct FurniturePart {
   std::string name;       ///< part label: "seat", "back", "arm_left", "leg_3", "frame", "shade_2"
-  std::string primitive;  ///< "box", "cylinder", "sphere", "quad" (scene/primitives.h, unit size)
+  std::string primitive;  ///< "box", "cylinder", "fold", "sphere", "quad" (scene/primitives.h, unit size)
   Mat4 T_model_part = Mat4::Identity();  ///< places the unit primitive in the model frame (m)
   int material = 0;                      ///< index into FurnitureModel::materials
   int nyu40 = 0;  ///< class of this part when it differs from the model's (the sink basin of a

@@ -184,8 +184,9 @@ void window(Builder& b) {
   b.model().mount_height = b.uniform(0.8, 1.0);
 }
 
-/// A rod on two brackets (wall at y = 0) with pleated translucent panels hanging below it:
-/// `panels` of 1 (from the left) or 2 (from both ends), each covering `cover` of the width.
+/// A rod on two brackets (wall at y = 0) with translucent panels hanging below it: `panels` of 1
+/// (from the left) or 2 (from both ends), each covering `cover` of the width, a continuous sheet
+/// of folds about 12 cm wide and 3 cm deep (at most `pleats` per panel).
 void drape(Builder& b, double W, double drop, int panels, double cover, int pleats) {
   const double r = b.uniform(0.01, 0.015), yr = -0.1;
   const int cloth = b.pick(Palette::Curtain), metal = b.pick(Palette::Metal);
@@ -195,13 +196,13 @@ void drape(Builder& b, double W, double drop, int panels, double cover, int plea
     b.box(s < 0 ? "bracket_left" : "bracket_right", metal, {x - 0.01, yr + r, drop},
           {x + 0.01, 0, drop + 2 * r});
   }
-  const double pw = cover * W / pleats;
+  const int folds = std::clamp(static_cast<int>(std::lround(cover * W / 0.12)), 2, pleats);
+  const double fw = cover * W / folds, fd = 0.03;
   for (int p = 0; p < panels; ++p)
-    for (int i = 0; i < pleats; ++i) {
-      const double x0 = p == 0 ? -W / 2 + i * pw : W / 2 - (i + 1) * pw;
-      const double y0 = i % 2 ? yr : yr - 0.025;
-      b.box("panel_" + std::to_string(p) + "_pleat_" + std::to_string(i), cloth, {x0, y0, 0},
-            {x0 + pw, y0 + 0.004, drop});
+    for (int i = 0; i < folds; ++i) {
+      const double x0 = p == 0 ? -W / 2 + i * fw : W / 2 - (i + 1) * fw;
+      b.rotated("panel_" + std::to_string(p) + "_fold_" + std::to_string(i), "fold", cloth,
+                {x0 + fw / 2, yr - 0.01, drop / 2}, {fw, fd, drop}, Mat3::Identity());
     }
 }
 

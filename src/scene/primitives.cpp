@@ -73,6 +73,32 @@ Mesh cylinder(int segments) {
   return m;
 }
 
+/// One fold of cloth: y = cos(2 pi (x + 1/2)) / 2 over x, z in [-1/2, 1/2], back (+y) at both
+/// ends and forward at the middle. One two-sided surface of `segments` columns along x with the
+/// curve's smooth normals (towards -y, the front), u = x + 1/2, v = z + 1/2. Its ends have slope
+/// 0, so folds side by side join into a continuous pleated sheet with continuous normals: a
+/// curtain panel without the cracks and the facets of boxes side by side.
+Mesh fold(int segments) {
+  Mesh m;
+  const auto n = static_cast<uint32_t>(segments);
+  for (uint32_t i = 0; i <= n; ++i) {
+    const float u = static_cast<float>(i) / segments, a = 2.0f * static_cast<float>(M_PI) * u;
+    const float x = u - 0.5f, y = 0.5f * std::cos(a);
+    const Vec3f normal = Vec3f(-static_cast<float>(M_PI) * std::sin(a), -1.f, 0.f).normalized();
+    for (float z : {-0.5f, 0.5f}) {
+      m.positions.emplace_back(x, y, z);
+      m.normals.push_back(normal);
+      m.uvs.emplace_back(u, z + 0.5f);
+    }
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t b0 = 2 * i, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
+    m.triangles.push_back(Tri(b0, b1, t1));  // geometric normal on the shading normal's side
+    m.triangles.push_back(Tri(b0, t1, t0));
+  }
+  return m;
+}
+
 double param(const std::map<std::string, double>& params, const std::string& key, double fallback) {
   auto it = params.find(key);
   return it == params.end() ? fallback : it->second;
@@ -96,7 +122,7 @@ void rejectUnknown(const std::map<std::string, double>& params,
 }  // namespace
 
 const std::vector<std::string>& primitiveNames() {
-  static const std::vector<std::string> names = {"box", "cylinder", "quad", "sphere"};
+  static const std::vector<std::string> names = {"box", "cylinder", "fold", "quad", "sphere"};
   return names;
 }
 
@@ -109,13 +135,16 @@ Mesh makePrimitive(const std::string& name, const std::map<std::string, double>&
   } else if (name == "quad") {
     rejectUnknown(params, {}, where, field, name);
     addQuad(m, {-0.5f, -0.5f, 0.f}, {0.5f, -0.5f, 0.f}, {0.5f, 0.5f, 0.f}, {-0.5f, 0.5f, 0.f});
-  } else if (name == "cylinder") {
+  } else if (name == "cylinder" || name == "fold") {
     rejectUnknown(params, {"segments"}, where, field, name);
-    double seg = param(params, "segments", 24);
-    if (!(seg >= 3 && seg <= 256) || seg != std::floor(seg)) {
-      throw InputError(where, field + ".segments", "must be an integer in [3, 256]");
+    const bool cyl = name == "cylinder";
+    const int lo = cyl ? 3 : 2;
+    const double seg = param(params, "segments", cyl ? 24 : 16);
+    if (!(seg >= lo && seg <= 256) || seg != std::floor(seg)) {
+      throw InputError(where, field + ".segments",
+                       fmt::format("must be an integer in [{}, 256]", lo));
     }
-    m = cylinder(static_cast<int>(seg));
+    m = cyl ? cylinder(static_cast<int>(seg)) : fold(static_cast<int>(seg));
   } else if (name == "sphere") {
     rejectUnknown(params, {"radius"}, where, field, name);
     double r = param(params, "radius", 0.5);

@@ -3,6 +3,9 @@
 // transform carries its real size:
 //   box       unit cube [-0.5, 0.5]^3, 12 triangles, outward winding
 //   cylinder  radius 0.5, height 1 along z, centred; param "segments" (3..256, default 24)
+//   fold      one fold of cloth, y = cos(2 pi (x + 1/2)) / 2 for x, z in [-0.5, 0.5], one
+//             two-sided surface with smooth normals; param "segments" (2..256, default 16).
+//             Folds side by side along x join with continuous normals (curtain panels)
 //   quad      unit square [-0.5, 0.5]^2 in the z = 0 plane, geometric normal +z
 //   sphere    analytic sphere (not tessellated); param "radius" (> 0, default 0.5)
 #include <map>

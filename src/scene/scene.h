@@ -25,7 +25,7 @@ using Vec2f = Eigen::Vector2f;
 struct MeshSource {
   enum class Kind { Primitive, File, Inline, Catalog };
   Kind kind = Kind::Inline;
-  std::string primitive;                 ///< Primitive: "box", "cylinder", "quad", "sphere"
+  std::string primitive;                 ///< Primitive: "box", "cylinder", "fold", "quad", "sphere"
   std::map<std::string, double> params;  ///< Primitive parameters (see primitives.h)
   std::string file;                      ///< File: path as written in the layout (relative to it)
   double scale = 1.0;                    ///< File: metres per file unit

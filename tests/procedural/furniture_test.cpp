@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "scene/nyu40.h"
+#include "scene/primitives.h"
 
 namespace inet {
 namespace {
@@ -103,9 +104,8 @@ TEST(Furniture, EveryCategoryBuildsWithNamedValidParts) {
       std::set<std::string> names;
       for (const auto& p : m.parts) {
         EXPECT_TRUE(names.insert(p.name).second) << where(m, s) << " repeats part " << p.name;
-        EXPECT_TRUE(p.primitive == "box" || p.primitive == "cylinder" || p.primitive == "sphere" ||
-                    p.primitive == "quad")
-            << p.primitive;
+        const auto& prims = primitiveNames();
+        EXPECT_NE(std::find(prims.begin(), prims.end(), p.primitive), prims.end()) << p.primitive;
         EXPECT_GE(p.material, 0);
         EXPECT_LT(p.material, static_cast<int>(m.materials.size()));
         EXPECT_TRUE(p.T_model_part.allFinite());

@@ -354,7 +354,7 @@ std::vector<BadLayout> meshCases() {
       {"mesh_two_kinds", edited([](json& j) { j["meshes"][0]["file"] = "a.obj"; }), "meshes[0]",
        "exactly one of"},
       {"unknown_primitive", edited([](json& j) { j["meshes"][0]["primitive"] = "torus"; }),
-       "meshes[0].primitive", "box, cylinder, quad, sphere"},
+       "meshes[0].primitive", "box, cylinder, fold, quad, sphere"},
       {"bad_primitive_param", edited([](json& j) {
          j["meshes"][0] = {{"id", "box"}, {"primitive", "cylinder"}, {"params", {{"segments", 2}}}};
        }),

@@ -146,6 +146,45 @@ TEST(Primitives, QuadFacesUp) {
   for (const auto& p : quad.positions) EXPECT_EQ(p.z(), 0.0f);
 }
 
+// A curtain panel is folds side by side: each fold must lie in the unit box on the curve, face
+// the front with normals that are the curve's (so shading agrees with the geometry), and end
+// where the next begins with the same position and normal (no crack, no crease).
+TEST(Primitives, FoldsJoinIntoOneSmoothSheetFacingTheFront) {
+  const Mesh f = makePrimitive("fold", {{"segments", 12}}, "test", "fold");
+  ASSERT_EQ(f.positions.size(), 26u);
+  ASSERT_EQ(f.triangles.size(), 24u);
+  ASSERT_EQ(f.normals.size(), f.positions.size());
+  for (size_t i = 0; i < f.positions.size(); ++i) {
+    const Vec3f& p = f.positions[i];
+    EXPECT_NEAR(p.y(), 0.5 * std::cos(2 * M_PI * (p.x() + 0.5)), 1e-6);
+    EXPECT_LE(p.cwiseAbs().maxCoeff(), 0.5f + 1e-6f);
+    // normal perpendicular to the curve's tangent (1, dy/dx, 0), unit, pointing to -y
+    const double slope = -M_PI * std::sin(2 * M_PI * (p.x() + 0.5));
+    const Vec3f& n = f.normals[i];
+    EXPECT_NEAR(n.norm(), 1.0, 1e-6);
+    EXPECT_NEAR(n.x() + slope * n.y(), 0.0, 1e-6);
+    EXPECT_LT(n.y(), 0.f);
+  }
+  for (const auto& t : f.triangles) {  // winding on the shading normals' side
+    const Vec3 g = faceNormal(f, t);
+    Vec3 n = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) n += f.normals[t[k]].cast<double>();
+    EXPECT_GT(g.dot(n), 0.0);
+  }
+  // the right end of one fold is the left end of the next (shifted by 1 in x)
+  int joined = 0;
+  for (size_t i = 0; i < f.positions.size(); ++i)
+    for (size_t j = 0; j < f.positions.size(); ++j)
+      if (f.positions[i].x() == 0.5f && f.positions[j].x() == -0.5f &&
+          f.positions[i].z() == f.positions[j].z()) {
+        EXPECT_NEAR(f.positions[i].y(), f.positions[j].y(), 1e-7);
+        EXPECT_NEAR((f.normals[i] - f.normals[j]).norm(), 0.0, 1e-6);
+        ++joined;
+      }
+  EXPECT_EQ(joined, 2);
+  EXPECT_EQ(makePrimitive("fold", {}, "t", "f").triangles.size(), 32u);  // 16 by default
+}
+
 TEST(Primitives, SphereIsAnalytic) {
   Mesh s = makePrimitive("sphere", {{"radius", 0.25}}, "test", "s");
   EXPECT_TRUE(s.isSphere());
@@ -168,6 +207,10 @@ TEST(Primitives, BadParametersNameTheField) {
             }).find("integer"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
+              makePrimitive("fold", {{"segments", 1}}, "f", "m");
+            }).find("m.segments"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
               makePrimitive("sphere", {{"radius", 0}}, "f", "m");
             }).find("m.radius"),
             std::string::npos);
@@ -177,7 +220,7 @@ TEST(Primitives, BadParametersNameTheField) {
             std::string::npos);
   std::string unknown = errorOf([] { makePrimitive("torus", {}, "f", "m"); });
   EXPECT_NE(unknown.find("torus"), std::string::npos);
-  EXPECT_NE(unknown.find("box, cylinder, quad, sphere"), std::string::npos);
+  EXPECT_NE(unknown.find("box, cylinder, fold, quad, sphere"), std::string::npos);
 }
 
 TEST(Nyu40, EveryIdRoundTripsThroughItsName) {
