@@ -217,9 +217,13 @@ class Builder {
           else
             m.uvs[i] = Vec2f(m.uvs[i].x() * around, m.uvs[i].y() * s.z()) / t;
         }
-      } else if (primitive == "fold") {  // u along the cloth (out and back: about x + 2y)
-        const float along = s.x() + 2.f * s.y();
-        for (Vec2f& uv : m.uvs) uv = Vec2f(uv.x() * along, uv.y() * s.z()) / t;
+      } else if (primitive == "fold") {  // u: arc length along the cloth (bottom, top per column)
+        float along = 0.f;
+        for (size_t i = 0; i + 1 < m.positions.size(); i += 2) {
+          if (i > 0) along += (m.positions[i] - m.positions[i - 2]).norm();
+          m.uvs[i] = Vec2f(along, 0.f) / t;
+          m.uvs[i + 1] = Vec2f(along, s.z()) / t;
+        }
       } else {  // box and quad: quads of 4 vertices, uv (0,0) (1,0) (1,1) (0,1)
         for (size_t q = 0; q + 3 < m.positions.size(); q += 4) {
           const float a = (m.positions[q + 1] - m.positions[q]).norm() / t;

@@ -119,6 +119,18 @@ void rejectUnknown(const std::map<std::string, double>& params,
   }
 }
 
+/// The only parameter of a tessellated primitive: "segments", an integer in [lo, 256].
+int segmentsParam(const std::map<std::string, double>& params, int lo, int fallback,
+                  const std::string& where, const std::string& field, const std::string& name) {
+  rejectUnknown(params, {"segments"}, where, field, name);
+  const double seg = param(params, "segments", fallback);
+  if (!(seg >= lo && seg <= 256) || seg != std::floor(seg)) {
+    throw InputError(where, field + ".segments",
+                     fmt::format("must be an integer in [{}, 256]", lo));
+  }
+  return static_cast<int>(seg);
+}
+
 }  // namespace
 
 const std::vector<std::string>& primitiveNames() {
@@ -135,16 +147,10 @@ Mesh makePrimitive(const std::string& name, const std::map<std::string, double>&
   } else if (name == "quad") {
     rejectUnknown(params, {}, where, field, name);
     addQuad(m, {-0.5f, -0.5f, 0.f}, {0.5f, -0.5f, 0.f}, {0.5f, 0.5f, 0.f}, {-0.5f, 0.5f, 0.f});
-  } else if (name == "cylinder" || name == "fold") {
-    rejectUnknown(params, {"segments"}, where, field, name);
-    const bool cyl = name == "cylinder";
-    const int lo = cyl ? 3 : 2;
-    const double seg = param(params, "segments", cyl ? 24 : 16);
-    if (!(seg >= lo && seg <= 256) || seg != std::floor(seg)) {
-      throw InputError(where, field + ".segments",
-                       fmt::format("must be an integer in [{}, 256]", lo));
-    }
-    m = cyl ? cylinder(static_cast<int>(seg)) : fold(static_cast<int>(seg));
+  } else if (name == "cylinder") {
+    m = cylinder(segmentsParam(params, 3, 24, where, field, name));
+  } else if (name == "fold") {
+    m = fold(segmentsParam(params, 2, 16, where, field, name));
   } else if (name == "sphere") {
     rejectUnknown(params, {"radius"}, where, field, name);
     double r = param(params, "radius", 0.5);

@@ -96,6 +96,7 @@ TEST(Furniture, AtLeastFortyUniqueCategories) {
 }
 
 TEST(Furniture, EveryCategoryBuildsWithNamedValidParts) {
+  const auto& prims = primitiveNames();
   for (const auto& [cat, models] : allModels())
     for (int s = 0; s < kSeeds; ++s) {
       const FurnitureModel& m = models[s];
@@ -104,7 +105,6 @@ TEST(Furniture, EveryCategoryBuildsWithNamedValidParts) {
       std::set<std::string> names;
       for (const auto& p : m.parts) {
         EXPECT_TRUE(names.insert(p.name).second) << where(m, s) << " repeats part " << p.name;
-        const auto& prims = primitiveNames();
         EXPECT_NE(std::find(prims.begin(), prims.end(), p.primitive), prims.end()) << p.primitive;
         EXPECT_GE(p.material, 0);
         EXPECT_LT(p.material, static_cast<int>(m.materials.size()));
