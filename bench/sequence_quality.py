@@ -16,6 +16,11 @@ Per frame that has a reference, over the flat diffuse regions of the label pass 
   rel_rmse  sqrt(sum (x - r)^2 / sum r^2), every channel of every flat pixel
   blotch    the largest 4-connected group of flat pixels whose 3x3-box-filtered luminance is
             more than 10 % off the reference's (3x3 box too), in pixels
+With REF2_SEQ also: rel_rmse_flat_true split into _edges (flat pixels with another class in
+their 3x3 label neighbourhood, whose footprint holds two surfaces) and _interior, with the edges'
+share of the squared error (flat_edge_error_share); largest_blotch_interior_px leaves the edges
+out; ref_largest_blotch_px is the second reference's blotch against the first (the measure's
+own floor) and largest_blotch_vs_mean_px ours against the mean of both references.
 Over consecutive frames k, k+1 of OURS_SEQ (the flicker of the issue): the flat pixels of k whose
 forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label neighbourhood on
 both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709),
@@ -23,6 +28,8 @@ also per class (flicker_walls, _floors, _ceilings) and, where the sequence has t
 (`--passes ...,albedo`), on the light alone (flicker_light: colour / albedo, so the texture's
 gradient under a sub-pixel reprojection does not count as flicker), and the measure's own floor
 on the albedo pass, which is exact (flicker_albedo, per class too: what a perfect render gives).
+The flicker_*bilinear* figures read frame k+1 bilinearly at x + flow instead of at the nearest
+pixel, which takes most of the texture's gradient out of the measure's floor.
 Specular light moves with the view, so a perfect render does not give 0 on a varnished floor.
 Prints one line "SEQ_JSON {...}".
 """
@@ -89,6 +96,58 @@ def largest_component(mask):
     return best
 
 
+BILINEAR_KEYS = tuple(f"flicker_{w}bilinear{c}" for w in ("", "light_", "albedo_")
+                      for c in ("", "_walls", "_floors", "_ceilings"))
+
+
+def flicker_bilinear(seq, names, img, lab, albedo, out):
+    """The flicker measure with frame k+1 read bilinearly at x + flow instead of at the nearest
+    pixel: nearest-pixel reading differs by up to half a pixel of the texture's gradient even in
+    a perfect render (flicker_albedo), bilinear reading by its curvature only. A pixel counts
+    where its 3x3 label neighbourhood is flat and uniform in frame k and the four pixels read in
+    frame k+1 have its label and uniform 3x3 neighbourhoods."""
+    for key in BILINEAR_KEYS:
+        out[key] = {}
+    for k in range(len(names) - 1):
+        n0, n1 = names[k], names[k + 1]
+        flo = os.path.join(seq, "flow0/data", n0 + ".flo")
+        if not os.path.exists(flo):
+            continue
+        uv, valid = read_flo(flo)
+        h, w = valid.shape
+        ys, xs = np.mgrid[0:h, 0:w]
+        px, py = xs + uv[:, :, 0], ys + uv[:, :, 1]  # pixel-centre coordinates in frame k+1
+        x0, y0 = np.floor(px).astype(int), np.floor(py).astype(int)
+        fx, fy = px - x0, py - y0
+        inside = valid & (x0 >= 0) & (x0 + 1 < w) & (y0 >= 0) & (y0 + 1 < h)
+        x0c, y0c = np.clip(x0, 0, w - 2), np.clip(y0, 0, h - 2)
+        l0, l1 = lab[n0], lab[n1]
+        u1 = uniform3(l1)
+        ok = inside & np.isin(l0, FLAT) & uniform3(l0)
+        for dy in (0, 1):
+            for dx in (0, 1):
+                ok &= (l1[y0c + dy, x0c + dx] == l0) & u1[y0c + dy, x0c + dx]
+
+        def read(a1):
+            return ((1 - fy) * ((1 - fx) * a1[y0c, x0c] + fx * a1[y0c, x0c + 1])
+                    + fy * ((1 - fx) * a1[y0c + 1, x0c] + fx * a1[y0c + 1, x0c + 1]))
+
+        fields = [("", img[n0] @ REC709, img[n1] @ REC709)]
+        a0, a1 = albedo.get(n0), albedo.get(n1)
+        if a0 is not None and a1 is not None:
+            fields.append(("light_", (img[n0] / np.maximum(a0, 0.01)) @ REC709,
+                           (img[n1] / np.maximum(a1, 0.01)) @ REC709))
+            fields.append(("albedo_", a0 @ REC709, a1 @ REC709))
+        for tag, f0, f1 in fields:
+            d = np.abs(read(f1) - f0)
+            if ok.any():
+                out[f"flicker_{tag}bilinear"][n0] = float(d[ok].mean() / max(f0[ok].mean(), 1e-12))
+            for cls, name in zip(FLAT, ("walls", "floors", "ceilings")):
+                m = ok & (l0 == cls)
+                if m.sum() > 100:
+                    out[f"flicker_{tag}bilinear_{name}"][n0] = float(d[m].mean() / max(f0[m].mean(), 1e-12))
+
+
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     ap = argparse.ArgumentParser(prog="sequence_quality.py")
@@ -126,10 +185,28 @@ def main():
         r2_path = os.path.join(a.ref2, "cam0/data", n + ".exr") if a.ref2 else ""
         if r2_path and os.path.exists(r2_path):
             r2 = load(r2_path)[:, :, :3]
+            # the blotch measure's own floor: the second reference against the first, and ours
+            # against the mean of both (half the references' noise variance)
+            l2 = box3(r2 @ REC709)
+            out["frames"][n]["ref_largest_blotch_px"] = int(largest_component(
+                flat & (np.abs(l2 - lr) > 0.1 * np.maximum(lr, 1e-6))))
+            lm = (lr + l2) / 2
+            out["frames"][n]["largest_blotch_vs_mean_px"] = int(largest_component(
+                flat & (np.abs(lx - lm) > 0.1 * np.maximum(lm, 1e-6))))
             ref_noise = np.sum((r - r2)[flat] ** 2) / 2
             out["frames"][n]["ref_rel_rmse_flat"] = float(np.sqrt(ref_noise / np.sum(r[flat] ** 2)))
             true = max(np.sum(d ** 2) - ref_noise, 0.0)
             out["frames"][n]["rel_rmse_flat_true"] = float(np.sqrt(true / np.sum(r[flat] ** 2)))
+            # the same split at class edges: flat pixels with another class in their 3x3 label
+            # neighbourhood (a pixel's footprint there holds two surfaces) and the rest
+            e2 = np.sum((x - r) ** 2, axis=2) - np.sum((r - r2) ** 2, axis=2) / 2
+            edge = flat & ~uniform3(lab[n])
+            for part, m in (("edges", edge), ("interior", flat & ~edge)):
+                out["frames"][n][f"rel_rmse_flat_true_{part}"] = float(
+                    np.sqrt(max(e2[m].sum(), 0.0) / max(np.sum(r[m] ** 2), 1e-30)))
+            out["frames"][n]["flat_edge_pixels"] = int(edge.sum())
+            out["frames"][n]["flat_edge_error_share"] = float(max(e2[edge].sum(), 0.0) / max(true, 1e-30))
+            out["frames"][n]["largest_blotch_interior_px"] = int(largest_component(bad & ~edge))
     for k in range(len(names) - 1):
         n0, n1 = names[k], names[k + 1]
         flo = os.path.join(a.seq, "flow0/data", n0 + ".flo")
@@ -170,12 +247,14 @@ def main():
                 m = ok & (l0 == cls)
                 if m.sum() > 100:
                     out["flicker_albedo_" + name][n0] = float(d[m].mean() / max(A0[m].mean(), 1e-12))
+    flicker_bilinear(a.seq, names, img, lab, albedo, out)
     for key in ("flicker", "flicker_walls", "flicker_floors", "flicker_ceilings", "flicker_light",
                 "flicker_albedo", "flicker_albedo_walls", "flicker_albedo_floors",
-                "flicker_albedo_ceilings"):
+                "flicker_albedo_ceilings") + BILINEAR_KEYS:
         fl = [v for v in out[key].values() if v is not None]
         out["mean_" + key] = float(np.mean(fl)) if fl else None
-    for key in ("rel_rmse_flat", "rel_rmse_flat_true"):
+    for key in ("rel_rmse_flat", "rel_rmse_flat_true", "rel_rmse_flat_true_edges",
+                "rel_rmse_flat_true_interior"):
         rr = [f[key] for f in out["frames"].values() if key in f]
         out["mean_" + key] = float(np.mean(rr)) if rr else None
     print("SEQ_JSON " + json.dumps(out))
