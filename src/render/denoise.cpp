@@ -414,6 +414,8 @@ std::string DenoiseOptions::describe() const {
     << " sigma_depth=" << sigma_depth << " sigma_albedo=" << sigma_albedo
     << " sigma_color=" << sigma_color << " albedo_epsilon=" << albedo_epsilon;
   if (mean_levels > 0) s << " mean_levels=" << mean_levels;
+  if (edge_iterations > 0 && edge_iterations < iterations)
+    s << " edge_iterations=" << edge_iterations;
   return s.str();
 }
 
@@ -425,7 +427,8 @@ void applyDenoiseParams(const std::string& text, DenoiseOptions& o, const std::s
                                                    {"sigma_color", &o.sigma_color},
                                                    {"albedo_epsilon", &o.albedo_epsilon}};
   const std::pair<const char*, int*> ints[] = {{"iterations", &o.iterations},
-                                               {"mean_levels", &o.mean_levels}};
+                                               {"mean_levels", &o.mean_levels},
+                                               {"edge_iterations", &o.edge_iterations}};
   std::vector<std::string> names;
   for (const auto& item : ints) names.push_back(item.first);
   for (const auto& item : floats) names.push_back(item.first);
@@ -479,6 +482,9 @@ void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
   if (o.mean_levels < 0 || o.mean_levels > 10)
     throw InputError(where, "denoise.mean_levels",
                      "must be in 0..10, got " + std::to_string(o.mean_levels));
+  if (o.edge_iterations < 0 || o.edge_iterations > 10)
+    throw InputError(where, "denoise.edge_iterations",
+                     "must be in 0..10, got " + std::to_string(o.edge_iterations));
   if (!(o.albedo_epsilon > 0.f && o.albedo_epsilon <= 1.f))
     throw InputError(where, "denoise.albedo_epsilon",
                      "must be in (0, 1], got " + std::to_string(o.albedo_epsilon));
@@ -704,7 +710,31 @@ void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& opt
   // filter only the light reflected by the surfaces; lights in view stay sharp
   ImageF& rgb = frame.rgb;
   for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] -= layers.emission.data[i];
-  rgb = denoise(rgb, frame.albedo, frame.normal, frame.depth_z, &layers.variance, options);
+  const ImageU8& label = frame.label;
+  const bool edges = options.edge_iterations > 0 && options.edge_iterations < options.iterations &&
+                     label.width == rgb.width && label.height == rgb.height;
+  if (!edges) {
+    rgb = denoise(rgb, frame.albedo, frame.normal, frame.depth_z, &layers.variance, options);
+  } else {
+    std::vector<ImageF> out =
+        denoiseLevels(rgb, frame.albedo, frame.normal, frame.depth_z, &layers.variance, options,
+                      {options.edge_iterations, options.iterations});
+    rgb = std::move(out[1]);
+    forEachRow(rgb.height, [&](int y) {
+      for (int x = 0; x < rgb.width; ++x) {
+        const uint8_t c = label.at(x, y);
+        bool edge = false;
+        for (int dy = -1; dy <= 1 && !edge; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = std::clamp(x + dx, 0, rgb.width - 1);
+            const int yy = std::clamp(y + dy, 0, rgb.height - 1);
+            if (label.at(xx, yy) != c) edge = true;
+          }
+        if (!edge) continue;
+        for (int k = 0; k < 3; ++k) rgb.at(x, y, k) = out[0].at(x, y, k);
+      }
+    });
+  }
   for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] += layers.emission.data[i];
 }
 

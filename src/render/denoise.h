@@ -61,6 +61,11 @@ struct DenoiseOptions {
   /// skewed (indoors most samples are dark and a few bright; a dark pixel rejects its bright
   /// neighbours more than the reverse), and walls of a default sequence came out 3-6 % dark.
   int mean_levels = 0;
+  /// 0, or pixels on a class edge (another NYU40 class in their 3x3 label neighbourhood) take
+  /// the result after this many levels when `iterations` is more (denoiseRgb, with the label
+  /// pass). The coarse levels lit a one-pixel seam there: floors next to curtains came out 40 %
+  /// bright at 5 levels and flat at 3 (docs/rendering.md, "Class edges").
+  int edge_iterations = 3;
 
   /// "iterations=5 sigma_normal=128 ..." for logs and dataset provenance.
   std::string describe() const;
@@ -156,7 +161,8 @@ void filterWindowView(ImageF& rgb, ImageF& emission, const WindowViewLayers& vie
 
 /// Denoises frame.rgb - layers.emission, guided by the frame's albedo, normal and z-depth and by
 /// layers.variance, and adds the emission back (what Renderer::render does with
-/// RenderOptions::denoise). The frame must carry those guides (rendered with layers).
+/// RenderOptions::denoise). The frame must carry those guides (rendered with layers). Where the
+/// frame has its label pass, class-edge pixels take options.edge_iterations levels.
 void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& options);
 
 }  // namespace inet

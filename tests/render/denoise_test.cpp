@@ -438,6 +438,65 @@ TEST(Denoise, TinyImagesAndBadOptions) {
   EXPECT_NE(DenoiseOptions{}.describe().find("iterations=5"), std::string::npos);
 }
 
+// Class-edge pixels (another label in their 3x3) take the result after edge_iterations levels,
+// the rest after iterations; without a label pass, or with edge_iterations 0, every pixel takes
+// the full filter. Exactly those images, bit for bit.
+TEST(Denoise, ClassEdgePixelsTakeTheFirstLevelsOnly) {
+  const int w = 64, h = 48;
+  SyntheticFrame f = makeFrame(w, h, 11);
+  Frame frame;
+  frame.albedo = f.albedo;
+  frame.normal = f.normal;
+  frame.depth_z = f.depth;
+  frame.label = ImageU8(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool box = x >= w * 0.15 && x < w * 0.42 && y >= h * 0.55 && y < h * 0.9;
+      frame.label.at(x, y) = box ? 5 : (x < w / 2 ? 1 : 2);
+    }
+  RgbLayers layers;
+  layers.emission = ImageF(w, h, 3);
+  layers.variance = f.variance;
+  DenoiseOptions o;
+  o.iterations = 5;
+  o.edge_iterations = 3;
+  o.mean_levels = 5;
+  DenoiseOptions o3 = o;
+  o3.iterations = 3;
+  const ImageF full = denoise(f.noisy, f.albedo, f.normal, f.depth, &f.variance, o);
+  const ImageF first = denoise(f.noisy, f.albedo, f.normal, f.depth, &f.variance, o3);
+  frame.rgb = f.noisy;
+  denoiseRgb(frame, layers, o);
+  int edges = 0, differ = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          edge |= frame.label.at(std::clamp(x + dx, 0, w - 1), std::clamp(y + dy, 0, h - 1)) !=
+                  frame.label.at(x, y);
+      edges += edge;
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(frame.rgb.at(x, y, c), (edge ? first : full).at(x, y, c)) << x << "," << y;
+        differ += full.at(x, y, c) != first.at(x, y, c);
+      }
+    }
+  EXPECT_GT(edges, 150);  // the box's outline and the wall's middle seam
+  EXPECT_GT(differ, w * h) << "the two level counts give different images";
+  EXPECT_NE(o.describe().find("edge_iterations=3"), std::string::npos);
+  // no label pass, or edge_iterations 0: the full filter everywhere
+  for (int variant = 0; variant < 2; ++variant) {
+    Frame g = frame;
+    g.rgb = f.noisy;
+    DenoiseOptions p = o;
+    if (variant == 0) g.label = ImageU8();
+    if (variant == 1) p.edge_iterations = 0;
+    denoiseRgb(g, layers, p);
+    EXPECT_EQ(g.rgb.data, full.data) << variant;
+  }
+  EXPECT_EQ(o3.describe().find("edge_iterations"), std::string::npos) << "inactive at 3 levels";
+}
+
 TEST(Denoise, ParamsSetTheNamedFieldsAndRefuseBadOnesNamingTheFlag) {
   DenoiseOptions o;
   applyDenoiseParams("iterations=4,sigma_color=3.5,mean_levels=0", o, "", "--denoise-params");
@@ -448,7 +507,8 @@ TEST(Denoise, ParamsSetTheNamedFieldsAndRefuseBadOnesNamingTheFlag) {
   applyDenoiseParams("", o, "", "--denoise-params");  // nothing to change
   EXPECT_EQ(o.iterations, 4);
   for (const char* bad : {"iterations=11", "sigma_color=0", "sigma=3", "iterations=2.5",
-                          "iterations", "sigma_color=abc", "sigma_depth=nan", "iterations=4,"}) {
+                          "iterations", "sigma_color=abc", "sigma_depth=nan", "iterations=4,",
+                          "edge_iterations=11", "edge_iterations=-1"}) {
     DenoiseOptions d;
     const InputError e =
         test::expectInputError([&] { applyDenoiseParams(bad, d, "", "--denoise-params"); });
