@@ -2,7 +2,7 @@
 same poses (issue 14's acceptance figures; run inside Blender's Python, which has NumPy):
 
     blender -b --factory-startup -P bench/sequence_quality.py -- --seq OURS_SEQ --ref REF_SEQ \\
-        [--ref2 REF2_SEQ] [--json out.json]
+        [--ref2 REF2_SEQ] [--twin TWIN_SEQ] [--json out.json]
 
 OURS_SEQ is a folder written by `interiornet generate --hdr --passes rgb,depth,label,flow
 --format asl`; REF_SEQ one written for some of its poses (the same timestamps) at high spp and
@@ -21,6 +21,10 @@ their 3x3 label neighbourhood, whose footprint holds two surfaces) and _interior
 share of the squared error (flat_edge_error_share); largest_blotch_interior_px leaves the edges
 out; ref_largest_blotch_px is the second reference's blotch against the first (the measure's
 own floor) and largest_blotch_vs_mean_px ours against the mean of both references.
+With TWIN_SEQ, the same sequence rendered with another seed (the same poses), the true error is
+split into our noise (rel_rmse_flat_noise: |x - y|^2 / 2, x and y independent) and the bias both
+runs share (rel_rmse_flat_bias: what the true error holds beyond the noise), over all flat pixels
+and the interior (_interior).
 Over consecutive frames k, k+1 of OURS_SEQ (the flicker of the issue): the flat pixels of k whose
 forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label neighbourhood on
 both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709),
@@ -154,6 +158,7 @@ def main():
     ap.add_argument("--seq", required=True)
     ap.add_argument("--ref")
     ap.add_argument("--ref2")
+    ap.add_argument("--twin")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
     names = frames(a.seq)
@@ -205,6 +210,18 @@ def main():
                 out["frames"][n][f"rel_rmse_flat_true_{part}"] = float(
                     np.sqrt(max(e2[m].sum(), 0.0) / max(np.sum(r[m] ** 2), 1e-30)))
             out["frames"][n]["flat_edge_pixels"] = int(edge.sum())
+            y_path = os.path.join(a.twin, "cam0/data", n + ".exr") if a.twin else ""
+            if y_path and os.path.exists(y_path):
+                # the twin is the same sequence rendered with another seed: |x - y|^2 / 2 is our
+                # noise variance, and what the true error holds beyond it is bias, which both
+                # runs share (the denoiser's blur, the reuse's lag)
+                y = load(y_path)[:, :, :3]
+                v2 = np.sum((x - y) ** 2, axis=2) / 2
+                for part, m in (("", flat), ("_interior", flat & ~edge)):
+                    norm = max(np.sum(r[m] ** 2), 1e-30)
+                    out["frames"][n][f"rel_rmse_flat_noise{part}"] = float(np.sqrt(v2[m].sum() / norm))
+                    out["frames"][n][f"rel_rmse_flat_bias{part}"] = float(
+                        np.sqrt(max(e2[m].sum() - v2[m].sum(), 0.0) / norm))
             out["frames"][n]["flat_edge_error_share"] = float(max(e2[edge].sum(), 0.0) / max(true, 1e-30))
             out["frames"][n]["largest_blotch_interior_px"] = int(largest_component(bad & ~edge))
     for k in range(len(names) - 1):
@@ -254,7 +271,8 @@ def main():
         fl = [v for v in out[key].values() if v is not None]
         out["mean_" + key] = float(np.mean(fl)) if fl else None
     for key in ("rel_rmse_flat", "rel_rmse_flat_true", "rel_rmse_flat_true_edges",
-                "rel_rmse_flat_true_interior"):
+                "rel_rmse_flat_true_interior", "rel_rmse_flat_noise", "rel_rmse_flat_bias",
+                "rel_rmse_flat_noise_interior", "rel_rmse_flat_bias_interior"):
         rr = [f[key] for f in out["frames"].values() if key in f]
         out["mean_" + key] = float(np.mean(rr)) if rr else None
     print("SEQ_JSON " + json.dumps(out))

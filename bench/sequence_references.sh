@@ -6,6 +6,8 @@
 #   APARTMENT=3 FRAMES=24 PICK="0 11 23" WIDTH=320 SPP=16 INET=build/apps/interiornet
 #   EXTRA="--temporal 8"   more flags for the scored sequence (its default settings otherwise)
 #   NAME=default           the scored sequence's folder, OUT/seq_NAME
+#   TWIN=1                 also render OUT/seq_NAME_twin, the same poses and flags with render
+#                          seed 4, and split the error into our noise and our bias (--twin)
 #
 # OUT/layout         procedural apartment APARTMENT (`layout generate --seed APARTMENT`)
 # OUT/seq_NAME       FRAMES frames of the (1, 1) two-body path (--v-mult 1 --w-mult 1 --seed 3)
@@ -54,7 +56,19 @@ for r in a:101 b:102; do
     --out "$OUT/ref_$name" >/dev/null
   touch "$OUT/ref_$name.done"
 done
+twin_args=()
+if [ "${TWIN:-0}" = 1 ]; then
+  twin="${seq}_twin"
+  if [ ! -f "$twin.done" ]; then
+    # shellcheck disable=SC2086  # EXTRA is a list of flags
+    "$INET" generate --layout "$OUT/layout/layout.json" \
+      --trajectory "$dir/state_groundtruth_estimate0/data.csv" --seed 4 --spp "$SPP" \
+      --passes rgb,depth,label,flow,albedo "${camera[@]}" ${EXTRA:-} --out "$twin" >/dev/null
+    touch "$twin.done"
+  fi
+  twin_args=(--twin "$(dirname "$(find "$twin" -name meta.json | head -1)")")
+fi
 ref_a=$(dirname "$(find "$OUT/ref_a" -name meta.json | head -1)")
 ref_b=$(dirname "$(find "$OUT/ref_b" -name meta.json | head -1)")
 blender -b --factory-startup -P "$HERE/sequence_quality.py" -- --seq "$dir" --ref "$ref_a" \
-  --ref2 "$ref_b" --json "$seq.json" 2>/dev/null | grep SEQ_JSON
+  --ref2 "$ref_b" "${twin_args[@]}" --json "$seq.json" 2>/dev/null | grep SEQ_JSON
