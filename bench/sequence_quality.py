@@ -24,7 +24,9 @@ own floor) and largest_blotch_vs_mean_px ours against the mean of both reference
 With TWIN_SEQ, the same sequence rendered with another seed (the same poses), the true error is
 split into our noise (rel_rmse_flat_noise: |x - y|^2 / 2, x and y independent) and the bias both
 runs share (rel_rmse_flat_bias: what the true error holds beyond the noise), over all flat pixels
-and the interior (_interior).
+and the interior (_interior); per class on the interior, the bias (rel_bias_walls, ...), the
+part of it wider than 5 px (rel_bias_walls_5px: the differences box-filtered first) and the noise
+(rel_noise_walls).
 Over consecutive frames k, k+1 of OURS_SEQ (the flicker of the issue): the flat pixels of k whose
 forward flow lands on a pixel of k+1 with the same label and a flat 3x3 label neighbourhood on
 both sides; flicker = mean |L_k+1(x + flow) - L_k(x)| / mean L_k(x), luminance L (Rec. 709),
@@ -70,6 +72,12 @@ def box3(a):
     p = np.pad(a, 1, mode="edge")
     h, w = a.shape
     return sum(p[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)) / 9.0
+
+
+def box5(a):
+    p = np.pad(a, 2, mode="constant")
+    h, w = a.shape
+    return sum(p[dy:dy + h, dx:dx + w] for dy in range(5) for dx in range(5)) / 25.0
 
 
 def uniform3(label):
@@ -222,6 +230,26 @@ def main():
                     out["frames"][n][f"rel_rmse_flat_noise{part}"] = float(np.sqrt(v2[m].sum() / norm))
                     out["frames"][n][f"rel_rmse_flat_bias{part}"] = float(
                         np.sqrt(max(e2[m].sum() - v2[m].sum(), 0.0) / norm))
+                # the interior's bias per class and at two scales: (x - A)(y - B) has the mean
+                # b^2 (x, y share the bias b, A, B are unbiased, all four independent), and
+                # the same product of the differences box-filtered over 5x5 pixels of the class
+                # (b's 5-px mean squared): what is left at 5 px is the shading's, what goes is
+                # pixel-scale (texture detail, a seam)
+                inner = flat & ~edge
+                for cls, name in zip(FLAT, ("walls", "floors", "ceilings")):
+                    m = inner & (lab[n] == cls)
+                    if m.sum() < 100:
+                        continue
+                    norm = np.sum(r[m] ** 2)
+                    out["frames"][n][f"rel_bias_{name}"] = float(np.sqrt(max(
+                        np.sum((x - r) * (y - r2), axis=2)[m].sum(), 0.0) / norm))
+                    mf = m.astype(np.float64)
+                    cnt = np.maximum(box5(mf), 1e-9)
+                    dx = np.stack([box5((x - r)[:, :, c] * mf) for c in range(3)], axis=2) / cnt[:, :, None]
+                    dy = np.stack([box5((y - r2)[:, :, c] * mf) for c in range(3)], axis=2) / cnt[:, :, None]
+                    out["frames"][n][f"rel_bias_{name}_5px"] = float(np.sqrt(max(
+                        np.sum(dx * dy, axis=2)[m].sum(), 0.0) / norm))
+                    out["frames"][n][f"rel_noise_{name}"] = float(np.sqrt(v2[m].sum() / norm))
             out["frames"][n]["flat_edge_error_share"] = float(max(e2[edge].sum(), 0.0) / max(true, 1e-30))
             out["frames"][n]["largest_blotch_interior_px"] = int(largest_component(bad & ~edge))
     for k in range(len(names) - 1):
@@ -272,7 +300,9 @@ def main():
         out["mean_" + key] = float(np.mean(fl)) if fl else None
     for key in ("rel_rmse_flat", "rel_rmse_flat_true", "rel_rmse_flat_true_edges",
                 "rel_rmse_flat_true_interior", "rel_rmse_flat_noise", "rel_rmse_flat_bias",
-                "rel_rmse_flat_noise_interior", "rel_rmse_flat_bias_interior"):
+                "rel_rmse_flat_noise_interior", "rel_rmse_flat_bias_interior") + tuple(
+                    f"rel_{kind}_{name}{scale}" for name in ("walls", "floors", "ceilings")
+                    for kind, scale in (("bias", ""), ("bias", "_5px"), ("noise", ""))):
         rr = [f[key] for f in out["frames"].values() if key in f]
         out["mean_" + key] = float(np.mean(rr)) if rr else None
     print("SEQ_JSON " + json.dumps(out))

@@ -34,7 +34,8 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
   // shading divides by, what the caller's filters need) is traced in the same pass and left
   // unflagged in frame.passes.
   PassMask helpers = 0;
-  if (denoising) helpers |= passMask(Pass::Albedo, Pass::Normal, Pass::DepthZ);
+  // (the label: class-edge pixels are demodulated by the albedo pass, denoiseRgb)
+  if (denoising) helpers |= passMask(Pass::Albedo, Pass::Normal, Pass::DepthZ, Pass::Label);
   if (rgb && layers)
     helpers |= passMask(Pass::Albedo, Pass::Normal, Pass::DepthZ, Pass::DepthRay, Pass::Instance,
                         Pass::Label);
@@ -62,8 +63,9 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     for (size_t i = 0; i < r.data.size(); ++i) r.data[i] -= l.emission.data[i];
     return r;
   };
-  auto neighbourhood = [&](const std::vector<const ImageF*>& values) {
-    return neighbourhoodVariance(values, frame.albedo, frame.normal, frame.depth_z,
+  // on the footprint's albedo, which the filters demodulate by
+  auto neighbourhood = [&](const std::vector<const ImageF*>& values, const ImageF& albedo) {
+    return neighbourhoodVariance(values, albedo, frame.normal, frame.depth_z,
                                  options.denoise_options);
   };
   // the view through window panes is denoised on its own guides wherever the colour will be
@@ -93,7 +95,7 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
       const ImageF reflected = reflectedOf(*layers);
       ImageF rest = reflected;
       for (size_t i = 0; i < rest.data.size(); ++i) rest.data[i] -= layers->diffuse.data[i];
-      std::vector<ImageF> v = neighbourhood({&reflected, &layers->diffuse, &rest});
+      std::vector<ImageF> v = neighbourhood({&reflected, &layers->diffuse, &rest}, layers->albedo);
       layers->variance = std::move(v[0]);
       layers->diffuse_variance = std::move(v[1]);
       layers->rest_variance = std::move(v[2]);
@@ -104,13 +106,15 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     RgbLayers own;
     allocate(own.emission);
     allocate(own.variance);
+    allocate(own.albedo);
     IntegratorOutputs outputs{&own.emission, &own.variance};
+    outputs.albedo = &own.albedo;  // what denoiseRgb demodulates by
     outputs.window_view = view;
     integrator_->render(ctx, frame.rgb, outputs);
     filterView(own.emission);
     if (few_samples) {
       const ImageF reflected = reflectedOf(own);
-      own.variance = std::move(neighbourhood({&reflected})[0]);
+      own.variance = std::move(neighbourhood({&reflected}, own.albedo)[0]);
     }
     denoiseRgb(frame, own, options.denoise_options);
   }

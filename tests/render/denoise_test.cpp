@@ -497,6 +497,81 @@ TEST(Denoise, ClassEdgePixelsTakeTheFirstLevelsOnly) {
   EXPECT_EQ(o3.describe().find("edge_iterations"), std::string::npos) << "inactive at 3 levels";
 }
 
+// A texture finer than a pixel: the albedo pass is the pixel centre's texel, the colour a mean
+// over the footprint, whose albedo (RgbLayers::albedo) differs from the centre's by a part the
+// centre does not predict. Demodulated by the centre's albedo, the filter printed the centre's
+// texture on the result (pixels of like centre albedo are averaged, then multiplied by it); by
+// the footprint's, it divides the colour exactly and the result follows the footprint.
+TEST(Denoise, FootprintAlbedoDemodulatesATextureFinerThanAPixel) {
+  const int w = 64, h = 48;
+  SyntheticFrame f = makeFrame(w, h, 12, 0.1);
+  Frame frame;
+  frame.normal = f.normal;
+  frame.depth_z = f.depth;
+  frame.albedo = ImageF(w, h, 3);
+  RgbLayers layers;
+  layers.emission = ImageF(w, h, 3);
+  layers.variance = f.variance;
+  layers.albedo = ImageF(w, h, 3);
+  ImageF truth(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      CounterRng rng(12, RngStream::Sensor, 8, static_cast<uint32_t>(y * w + x), 0);
+      const double centre = 0.25 + 0.5 * rng.uniformDouble();  // the centre's texel
+      const double rest = 0.25 + 0.5 * rng.uniformDouble();    // the rest of the footprint
+      const double footprint = 0.5 * (centre + rest);
+      for (int c = 0; c < 3; ++c) {
+        // makeFrame's light (clean / its checker albedo) on this texture
+        const double light = f.clean.at(x, y, c) / f.albedo.at(x, y, c);
+        const double noise = f.noisy.at(x, y, c) - f.clean.at(x, y, c);
+        frame.albedo.at(x, y, c) = static_cast<float>(centre);
+        layers.albedo.at(x, y, c) = static_cast<float>(footprint);
+        truth.at(x, y, c) = static_cast<float>(light * footprint);
+        f.noisy.at(x, y, c) = static_cast<float>(light * footprint + noise * footprint);
+      }
+    }
+  DenoiseOptions o;
+  o.edge_iterations = 0;
+  frame.rgb = f.noisy;
+  denoiseRgb(frame, layers, o);
+  const ImageF by_footprint = frame.rgb;
+  RgbLayers centre_only = layers;
+  centre_only.albedo = ImageF();  // the albedo pass only
+  frame.rgb = f.noisy;
+  denoiseRgb(frame, centre_only, o);
+  const ImageF by_centre = frame.rgb;
+  auto relRmse = [&](const ImageF& img) {
+    double e = 0, t = 0;
+    for (size_t i = 0; i < img.data.size(); ++i) {
+      e += (img.data[i] - truth.data[i]) * (img.data[i] - truth.data[i]);
+      t += truth.data[i] * truth.data[i];
+    }
+    return std::sqrt(e / t);
+  };
+  const double noisy = relRmse(f.noisy), footprint = relRmse(by_footprint),
+               centre = relRmse(by_centre);
+  EXPECT_LT(footprint, 0.4 * noisy) << "noisy " << noisy;
+  EXPECT_LT(footprint, 0.04);
+  EXPECT_GT(centre, 0.10) << "the centre's texture, printed on the result";
+  EXPECT_GT(centre, 2.5 * footprint);
+  EXPECT_NEAR(meanOf(by_footprint) / meanOf(truth), 1.0, 0.01);
+  // a label pass of one class (no class edge) changes nothing; at class edges the footprint's
+  // albedo is the share of samples on each surface (noise), so those pixels keep the pass's
+  frame.label = ImageU8(w, h, 1);
+  for (uint8_t& l : frame.label.data) l = 2;
+  frame.rgb = f.noisy;
+  denoiseRgb(frame, layers, o);
+  EXPECT_EQ(frame.rgb.data, by_footprint.data);
+  for (int y = 0; y < h; ++y) frame.label.at(w / 2, y) = 5;  // a one-pixel strip of another class
+  frame.rgb = f.noisy;
+  denoiseRgb(frame, layers, o);
+  int changed = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      changed += frame.rgb.at(x, y, 0) != by_footprint.at(x, y, 0);
+  EXPECT_GE(changed, 3 * h) << "the strip and its two neighbours take the pass's albedo";
+}
+
 TEST(Denoise, ParamsSetTheNamedFieldsAndRefuseBadOnesNamingTheFlag) {
   DenoiseOptions o;
   applyDenoiseParams("iterations=4,sigma_color=3.5,mean_levels=0", o, "", "--denoise-params");
