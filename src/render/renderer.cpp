@@ -117,6 +117,7 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
       own.variance = std::move(neighbourhood({&reflected}, own.albedo)[0]);
     }
     denoiseRgb(frame, own, options.denoise_options);
+    if (!has(options.passes, Pass::Label)) frame.label = {};  // a helper only, not asked for
   }
   if (has(options.passes, Pass::Rgb)) frame.passes |= bit(Pass::Rgb);
   if (shading) {
