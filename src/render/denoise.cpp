@@ -737,20 +737,23 @@ void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& opt
   // is the share of samples on each surface, which is noise the result would keep (the edge
   // ring's error rose from 0.12-0.14 to 0.14-0.16 in the default sequence), while the centre's
   // is exact; the filter averages the mix as before.
-  const bool footprint = layers.albedo.width == rgb.width && layers.albedo.height == rgb.height;
+  const ImageF* albedo = &frame.albedo;
   ImageF mixed;
-  if (footprint && labelled) {
-    mixed = layers.albedo;
-    for (size_t i = 0; i < edge.size(); ++i)
-      if (edge[i])
-        for (int k = 0; k < 3; ++k) mixed.data[3 * i + k] = frame.albedo.data[3 * i + k];
+  if (layers.albedo.width == rgb.width && layers.albedo.height == rgb.height) {
+    albedo = &layers.albedo;
+    if (labelled) {
+      mixed = layers.albedo;
+      for (size_t i = 0; i < edge.size(); ++i)
+        if (edge[i])
+          for (int k = 0; k < 3; ++k) mixed.data[3 * i + k] = frame.albedo.data[3 * i + k];
+      albedo = &mixed;
+    }
   }
-  const ImageF& albedo = !footprint ? frame.albedo : labelled ? mixed : layers.albedo;
   if (!edges) {
-    rgb = denoise(rgb, albedo, frame.normal, frame.depth_z, &layers.variance, options);
+    rgb = denoise(rgb, *albedo, frame.normal, frame.depth_z, &layers.variance, options);
   } else {
     std::vector<ImageF> out =
-        denoiseLevels(rgb, albedo, frame.normal, frame.depth_z, &layers.variance, options,
+        denoiseLevels(rgb, *albedo, frame.normal, frame.depth_z, &layers.variance, options,
                       {options.edge_iterations, options.iterations});
     rgb = std::move(out[1]);
     for (size_t i = 0; i < edge.size(); ++i)
