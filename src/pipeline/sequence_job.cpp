@@ -725,7 +725,8 @@ SequenceJobResult::Sequence renderSequence(const SequenceJob& a, const SceneConf
     } else if (opt.denoise) {
       denoiseRgb(f, layers, opt.denoise_options);
     }
-    if (r && smooth_frames > 1) r->smooth(f, layers);
+    // denoiseRgb filtered the diffuse light apart (layers.diffuse); the network did not
+    if (r && smooth_frames > 1) r->smooth(f, layers, !net);
   };
   auto renderColour = [&](size_t k, const Pose& T_rig, uint32_t idx, TemporalReuse* r, Frame& f,
                           const std::string& dump_name) {

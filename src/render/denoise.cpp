@@ -152,13 +152,20 @@ float luminance(float r, float g, float b) {
   return kLumR * r + kLumG * g + kLumB * b;
 }
 
-/// Pixel i of the irradiance E = rgb / max(albedo, eps) and, if given, of the variance of E's
+/// The factor the filter divides pixel i's colour by and multiplies its result by:
+/// max(albedo, eps) per channel, or 1 where the light is not the albedo's (eps = 0).
+std::array<float, 3> modulation(const Guide& g, float eps, size_t i) {
+  if (eps == 0.f) return {1.f, 1.f, 1.f};
+  return {std::max(g.ar[i], eps), std::max(g.ag[i], eps), std::max(g.ab[i], eps)};
+}
+
+/// Pixel i of the irradiance E = rgb / modulation and, if given, of the variance of E's
 /// luminance.
 void demodulatePixel(const ImageF& rgb, const ImageF* variance, const Guide& g, float eps, size_t i,
                      Signal& s) {
   const float* c = rgb.data.data() + 3 * i;
-  float inv[3] = {1.f / std::max(g.ar[i], eps), 1.f / std::max(g.ag[i], eps),
-                  1.f / std::max(g.ab[i], eps)};
+  const std::array<float, 3> m = modulation(g, eps, i);
+  const float inv[3] = {1.f / m[0], 1.f / m[1], 1.f / m[2]};
   s.r[i] = c[0] * inv[0], s.g[i] = c[1] * inv[1], s.b[i] = c[2] * inv[2];
   s.lum[i] = luminance(s.r[i], s.g[i], s.b[i]);
   if (!variance) return;
@@ -561,9 +568,14 @@ void keepSurfaceMean(const Guide& g, const Signal& in_mean, Signal& out,
   });
 }
 
-std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
-                                  const ImageF& depth, const ImageF* variance,
-                                  const DenoiseOptions& opt, const std::vector<int>& levels) {
+namespace {
+
+/// denoiseLevels(); `by_albedo` false filters rgb itself (the albedo still stops the filter):
+/// light that the albedo does not scale, such as a varnish's reflection (denoiseRgb).
+std::vector<ImageF> filterLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
+                                 const ImageF& depth, const ImageF* variance,
+                                 const DenoiseOptions& opt, const std::vector<int>& levels,
+                                 bool by_albedo) {
   INET_CHECK_MSG(rgb.channels == 3, "denoise: rgb must have 3 channels");
   checkPass(albedo, rgb, 3, "albedo");
   checkPass(normal, rgb, 3, "normal");
@@ -579,7 +591,8 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
   if (rgb.empty()) return std::vector<ImageF>(levels.size(), rgb);
 
   const Guide g = buildGuide(rgb, albedo, normal, depth, opt);
-  Signal a = demodulate(rgb, variance, g, opt.albedo_epsilon);
+  const float eps = by_albedo ? opt.albedo_epsilon : 0.f;  // 0: modulation() is 1
+  Signal a = demodulate(rgb, variance, g, eps);
   if (!variance) estimateVariance(g, a, opt);
   // the input's surface mean, when the output keeps it: taken before the fireflies go, whose
   // light is real (the rare bright samples of a skewed estimate) and is then spread over the
@@ -587,16 +600,16 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
   const Signal in_mean = opt.mean_levels > 0 ? surfaceMean(g, a, opt.mean_levels, opt) : Signal(0);
   rejectFireflies(g, a);
   Signal b(g.size());
-  const float eps = opt.albedo_epsilon;
   auto remodulated = [&](const Signal& s) {
     ImageF out = rgb;
     forEachRow(g.height, [&](int y) {
       for (size_t i = static_cast<size_t>(y) * g.width; i < static_cast<size_t>(y + 1) * g.width;
            ++i) {
         if (g.valid[i] == 0.f) continue;
-        out.data[3 * i] = s.r[i] * std::max(g.ar[i], eps);
-        out.data[3 * i + 1] = s.g[i] * std::max(g.ag[i], eps);
-        out.data[3 * i + 2] = s.b[i] * std::max(g.ab[i], eps);
+        const std::array<float, 3> m = modulation(g, eps, i);
+        out.data[3 * i] = s.r[i] * m[0];
+        out.data[3 * i + 1] = s.g[i] * m[1];
+        out.data[3 * i + 2] = s.b[i] * m[2];
       }
     });
     return out;
@@ -617,6 +630,14 @@ std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const
     }
   }
   return outs;
+}
+
+}  // namespace
+
+std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
+                                  const ImageF& depth, const ImageF* variance,
+                                  const DenoiseOptions& opt, const std::vector<int>& levels) {
+  return filterLevels(rgb, albedo, normal, depth, variance, opt, levels, true);
 }
 
 ImageF denoise(const ImageF& rgb, const ImageF& albedo, const ImageF& normal, const ImageF& depth,
@@ -706,7 +727,7 @@ std::vector<ImageF> neighbourhoodVariance(const std::vector<const ImageF*>& valu
   return out;
 }
 
-void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& options) {
+void denoiseRgb(Frame& frame, RgbLayers& layers, const DenoiseOptions& options) {
   // filter only the light reflected by the surfaces; lights in view stay sharp
   ImageF& rgb = frame.rgb;
   for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] -= layers.emission.data[i];
@@ -749,16 +770,32 @@ void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& opt
       albedo = &mixed;
     }
   }
-  if (!edges) {
-    rgb = denoise(rgb, *albedo, frame.normal, frame.depth_z, &layers.variance, options);
-  } else {
+  auto filter = [&](const ImageF& light, const ImageF* variance, bool demodulate) {
+    if (!edges)
+      return std::move(filterLevels(light, *albedo, frame.normal, frame.depth_z, variance, options,
+                                    {options.iterations}, demodulate)[0]);
     std::vector<ImageF> out =
-        denoiseLevels(rgb, *albedo, frame.normal, frame.depth_z, &layers.variance, options,
-                      {options.edge_iterations, options.iterations});
-    rgb = std::move(out[1]);
+        filterLevels(light, *albedo, frame.normal, frame.depth_z, variance, options,
+                     {options.edge_iterations, options.iterations}, demodulate);
     for (size_t i = 0; i < edge.size(); ++i)
       if (edge[i])
-        for (int k = 0; k < 3; ++k) rgb.data[3 * i + k] = out[0].data[3 * i + k];
+        for (int k = 0; k < 3; ++k) out[1].data[3 * i + k] = out[0].data[3 * i + k];
+    return std::move(out[1]);
+  };
+  auto sized = [&](const ImageF& image) {
+    return image.width == rgb.width && image.height == rgb.height && image.channels == 3;
+  };
+  if (sized(layers.diffuse) && sized(layers.diffuse_variance) && sized(layers.rest_variance)) {
+    // The albedo scales the diffuse light only. Divided by it too, a varnish's reflection came
+    // back multiplied by the texture it does not have (a wood floor's grain printed on its
+    // sheen), so the rest is filtered as it is, the albedo only stopping the filter.
+    ImageF rest = rgb;
+    for (size_t i = 0; i < rest.data.size(); ++i) rest.data[i] -= layers.diffuse.data[i];
+    layers.diffuse = filter(layers.diffuse, &layers.diffuse_variance, true);
+    rgb = filter(rest, &layers.rest_variance, false);
+    for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] += layers.diffuse.data[i];
+  } else {
+    rgb = filter(rgb, &layers.variance, true);
   }
   for (size_t i = 0; i < rgb.data.size(); ++i) rgb.data[i] += layers.emission.data[i];
 }

@@ -162,8 +162,12 @@ void filterWindowView(ImageF& rgb, ImageF& emission, const WindowViewLayers& vie
 /// Denoises frame.rgb - layers.emission, guided by the frame's normal and z-depth, by
 /// layers.variance and by the footprint's albedo (layers.albedo; the frame's albedo pass where
 /// the layers have none, and on class edges of the label pass), and adds the emission back
-/// (what Renderer::render does with RenderOptions::denoise). The frame must carry those guides (rendered with layers). Where the
-/// frame has its label pass, class-edge pixels take options.edge_iterations levels.
-void denoiseRgb(Frame& frame, const RgbLayers& layers, const DenoiseOptions& options);
+/// (what Renderer::render does with RenderOptions::denoise). The frame must carry those guides
+/// (rendered with layers). Where the frame has its label pass, class-edge pixels take
+/// options.edge_iterations levels. Where the layers split the light (diffuse, diffuse_variance
+/// and rest_variance all of the frame's size), the diffuse light is filtered demodulated by
+/// the albedo and the rest (rgb - emission - diffuse) as it is, each on its own variance, and
+/// layers.diffuse becomes the filtered diffuse light (what TemporalReuse::smooth reads).
+void denoiseRgb(Frame& frame, RgbLayers& layers, const DenoiseOptions& options);
 
 }  // namespace inet

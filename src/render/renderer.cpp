@@ -63,10 +63,18 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
     for (size_t i = 0; i < r.data.size(); ++i) r.data[i] -= l.emission.data[i];
     return r;
   };
-  // on the footprint's albedo, which the filters demodulate by
-  auto neighbourhood = [&](const std::vector<const ImageF*>& values, const ImageF& albedo) {
-    return neighbourhoodVariance(values, albedo, frame.normal, frame.depth_z,
-                                 options.denoise_options);
+  // the layers' variances from the neighbourhood, on the footprint's albedo, which the filters
+  // demodulate by
+  auto estimateFromNeighbourhood = [&](RgbLayers& l) {
+    const ImageF reflected = reflectedOf(l);
+    ImageF rest = reflected;
+    for (size_t i = 0; i < rest.data.size(); ++i) rest.data[i] -= l.diffuse.data[i];
+    std::vector<ImageF> v = neighbourhoodVariance({&reflected, &l.diffuse, &rest}, l.albedo,
+                                                  frame.normal, frame.depth_z,
+                                                  options.denoise_options);
+    l.variance = std::move(v[0]);
+    l.diffuse_variance = std::move(v[1]);
+    l.rest_variance = std::move(v[2]);
   };
   // the view through window panes is denoised on its own guides wherever the colour will be
   // (filterWindowView), before anything else reads the layers; a scene without panes has none
@@ -91,31 +99,22 @@ void Renderer::render(const LensModel& lens, const CameraExposure& exposure,
                          &layers->diffuse_variance, &layers->rest_variance, &layers->albedo,
                          &layers->view_alpha, view});
     filterView(layers->emission);
-    if (few_samples) {
-      const ImageF reflected = reflectedOf(*layers);
-      ImageF rest = reflected;
-      for (size_t i = 0; i < rest.data.size(); ++i) rest.data[i] -= layers->diffuse.data[i];
-      std::vector<ImageF> v = neighbourhood({&reflected, &layers->diffuse, &rest}, layers->albedo);
-      layers->variance = std::move(v[0]);
-      layers->diffuse_variance = std::move(v[1]);
-      layers->rest_variance = std::move(v[2]);
-    }
+    if (few_samples) estimateFromNeighbourhood(*layers);
   } else if (!denoising) {
     integrator_->render(ctx, frame.rgb, {});
   } else {
+    // the layers denoiseRgb reads: the footprint's albedo it demodulates by, and the diffuse
+    // light apart from the rest, which it filters without the albedo
     RgbLayers own;
-    allocate(own.emission);
-    allocate(own.variance);
-    allocate(own.albedo);
-    IntegratorOutputs outputs{&own.emission, &own.variance};
-    outputs.albedo = &own.albedo;  // what denoiseRgb demodulates by
+    for (ImageF* image : {&own.emission, &own.variance, &own.diffuse, &own.diffuse_variance,
+                          &own.rest_variance, &own.albedo})
+      allocate(*image);
+    IntegratorOutputs outputs{&own.emission,      &own.variance,      &own.diffuse,
+                              &own.diffuse_variance, &own.rest_variance, &own.albedo};
     outputs.window_view = view;
     integrator_->render(ctx, frame.rgb, outputs);
     filterView(own.emission);
-    if (few_samples) {
-      const ImageF reflected = reflectedOf(own);
-      own.variance = std::move(neighbourhood({&reflected}, own.albedo)[0]);
-    }
+    if (few_samples) estimateFromNeighbourhood(own);
     denoiseRgb(frame, own, options.denoise_options);
     if (!has(options.passes, Pass::Label)) frame.label = {};  // a helper only, not asked for
   }

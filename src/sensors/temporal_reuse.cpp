@@ -325,55 +325,72 @@ void TemporalReuse::add(Frame& frame, RgbLayers& layers, const Pose& T_world_cam
   if (options_.smoothFrames() > 1) added_ = Added{std::move(*r), before + 1 - past_.size()};
 }
 
-void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers) {
+void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers, bool split) {
   const int M = options_.smoothFrames();
   if (M <= 1) return;
   const int W = lens_.K.width, H = lens_.K.height;
   INET_CHECK(frame.rgb.width == W && frame.rgb.height == H && layers.emission.width == W &&
-             layers.albedo.width == W && layers.view_alpha.width == W);
+             layers.albedo.width == W && layers.view_alpha.width == W &&
+             (!split || layers.diffuse.width == W));
   // smooth() follows the add() of the same frame, whose taps added_ holds
   INET_CHECK(!past_.empty() &&
              added_.reprojection.source.size() + 1 == past_.size() + added_.popped);
   const float eps = options_.albedo_epsilon;
   const size_t n_px = static_cast<size_t>(W) * H;
   Past& self = past_.back();
+  // split: the diffuse light demodulated and the rest as it is; else the whole light demodulated
   self.filtered = ImageF(W, H, 3);
-  for (size_t i = 0; i < n_px * 3; ++i)
-    self.filtered.data[i] = (frame.rgb.data[i] - layers.emission.data[i]) /
-                            std::max(layers.albedo.data[i], eps);
+  self.filtered_rest = split ? ImageF(W, H, 3) : ImageF();
+  for (size_t i = 0; i < n_px * 3; ++i) {
+    const float light = frame.rgb.data[i] - layers.emission.data[i];
+    const float diffuse = split ? layers.diffuse.data[i] : light;
+    self.filtered.data[i] = diffuse / std::max(layers.albedo.data[i], eps);
+    if (split) self.filtered_rest.data[i] = light - diffuse;
+  }
   const std::vector<std::vector<Taps>>& source = added_.reprojection.source;
   const std::vector<std::vector<float>>& turn = added_.reprojection.turn;
   const size_t remembered = past_.size() - 1;  // the frames before this one
   const size_t first = remembered - std::min(remembered, static_cast<size_t>(M - 1));
   // older frames will not be within the last M again
-  for (size_t j = 0; j < first; ++j) past_[j].filtered = ImageF();
+  for (size_t j = 0; j < first; ++j) past_[j].filtered = past_[j].filtered_rest = ImageF();
+  auto interpolate = [](const Taps& t, const ImageF& image, int c) {
+    double value = 0.0;
+    for (int k = 0; k < t.count; ++k)
+      value += t.weight[k] * image.data[static_cast<size_t>(t.index[k]) * 3 + c];
+    return value;
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < W; ++x) {
         const size_t i = static_cast<size_t>(y) * W + x;
         const float max_turn = maxTurn(layers.view_alpha.data[i]);
-        double sum[3] = {self.filtered.data[3 * i], self.filtered.data[3 * i + 1],
-                         self.filtered.data[3 * i + 2]};
-        int n = 1;
+        double sum[3], rest[3];
+        for (int c = 0; c < 3; ++c) {
+          sum[c] = self.filtered.data[3 * i + c];
+          rest[c] = split ? self.filtered_rest.data[3 * i + c] : 0.0;
+        }
+        int n = 1, n_rest = 1;
         // newest first (a fixed order); past_[j] is source[j + popped]'s frame
         for (size_t j = remembered; j-- > first;) {
           const size_t s = j + added_.popped;
           const Taps& t = source[s][i];
-          if (t.count == 0 || past_[j].filtered.data.empty() || !(turn[s][i] <= max_turn))
-            continue;
-          for (int c = 0; c < 3; ++c) {
-            double value = 0.0;
-            for (int k = 0; k < t.count; ++k)
-              value += t.weight[k] * past_[j].filtered.data[static_cast<size_t>(t.index[k]) * 3 + c];
-            sum[c] += value;
+          if (t.count == 0 || past_[j].filtered.data.empty()) continue;
+          const bool turned_little = turn[s][i] <= max_turn;
+          if (split || turned_little) {
+            for (int c = 0; c < 3; ++c) sum[c] += interpolate(t, past_[j].filtered, c);
+            ++n;
           }
-          ++n;
+          if (split && turned_little && !past_[j].filtered_rest.data.empty()) {
+            for (int c = 0; c < 3; ++c) rest[c] += interpolate(t, past_[j].filtered_rest, c);
+            ++n_rest;
+          }
         }
-        if (n == 1) continue;
+        if (n == 1 && n_rest == 1) continue;
         for (int c = 0; c < 3; ++c) {
           const size_t k = i * 3 + c;
           frame.rgb.data[k] = layers.emission.data[k] +
-                              static_cast<float>(sum[c] / n) * std::max(layers.albedo.data[k], eps);
+                              static_cast<float>(sum[c] / n) * std::max(layers.albedo.data[k], eps) +
+                              static_cast<float>(rest[c] / n_rest);
         }
       }
   });

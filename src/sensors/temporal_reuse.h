@@ -45,8 +45,10 @@
 // Smoothing after the denoiser (`smooth`, M frames): the filtered light still changes from frame
 // to frame (the filter's colour weights follow the noise). smooth() replaces the filtered,
 // demodulated light of an interior pixel by its mean over the last M frames' filtered light at
-// the same point (the same taps; only frames whose view is within the tolerance above, or any
-// frame where the surface has no view-dependent lobe). The filtered frames share most of their
+// the same point (the same taps). Where the denoiser filtered the diffuse light apart
+// (denoiseRgb), the diffuse light takes every such frame and the rest only the frames whose
+// view is within the tolerance above, as in add(); otherwise the whole light takes only those
+// (or any frame where the surface has no view-dependent lobe). The filtered frames share most of their
 // reused samples, so their errors are alike: the mean changes slowly, which is what it is for
 // (frame to frame flicker of apartment 3's walls 2.4 % -> 1.1 % at M = 4, docs/denoise.md 1b).
 //
@@ -146,7 +148,9 @@ class TemporalReuse {
   /// becomes emission + the filtered light averaged over the last `smooth` frames (see the top of
   /// this file). A no-op when smooth is 1. Must follow add() of this frame, and the frames before
   /// it must have been smoothed too for them to count (the ones that were not are left out).
-  void smooth(Frame& frame, const RgbLayers& layers);
+  /// `split`: layers.diffuse is the filtered diffuse light (denoiseRgb), averaged apart from the
+  /// rest (rgb - emission - diffuse).
+  void smooth(Frame& frame, const RgbLayers& layers, bool split);
   /// Remembers a frame's geometry only (no colour): what plan() counts for the frames after it.
   /// For a caller that starts late (see the top of this file).
   void addGeometry(const Frame& gt, const Pose& T_world_camera, double scene_time_s);
@@ -172,7 +176,8 @@ class TemporalReuse {
     ImageU8 multiplier;  ///< the samples multiplier it was rendered with (empty: 1)
     ImageF rest;         ///< the view-dependent light (rgb - emission - diffuse), 3 channels
     ImageF rest_variance;
-    ImageF filtered;     ///< the denoiser's light / max(albedo, eps) (smooth(); empty: none)
+    ImageF filtered;     ///< the denoiser's (diffuse) light / max(albedo, eps) (smooth(); empty: none)
+    ImageF filtered_rest;  ///< split smooth(): the denoiser's rest, not demodulated
   };
   /// Where pixel i lands in a remembered frame: the (up to) 4 bilinear taps around the landing
   /// point that the reuse may read, weights summing to 1; count 0 where it is not seen there.

@@ -497,6 +497,33 @@ TEST(Denoise, ClassEdgePixelsTakeTheFirstLevelsOnly) {
   EXPECT_EQ(o3.describe().find("edge_iterations"), std::string::npos) << "inactive at 3 levels";
 }
 
+/// makeFrame's scene with the guides denoiseRgb reads: the frame's normal and depth, an albedo
+/// pass and the layers' footprint albedo (both 0, for the test's texture to fill in), no emission.
+struct LayeredFrame {
+  SyntheticFrame f;
+  Frame frame;
+  RgbLayers layers;
+};
+LayeredFrame layeredFrame(int w, int h, uint64_t seed) {
+  LayeredFrame l{makeFrame(w, h, seed, 0.1), {}, {}};
+  l.frame.normal = l.f.normal;
+  l.frame.depth_z = l.f.depth;
+  l.frame.albedo = ImageF(w, h, 3);
+  l.layers.emission = ImageF(w, h, 3);
+  l.layers.albedo = ImageF(w, h, 3);
+  return l;
+}
+
+/// Relative RMSE of img against truth over every channel.
+double relRmse(const ImageF& img, const ImageF& truth) {
+  double e = 0, t = 0;
+  for (size_t i = 0; i < img.data.size(); ++i) {
+    e += (img.data[i] - truth.data[i]) * (img.data[i] - truth.data[i]);
+    t += truth.data[i] * truth.data[i];
+  }
+  return std::sqrt(e / t);
+}
+
 // A texture finer than a pixel: the albedo pass is the pixel centre's texel, the colour a mean
 // over the footprint, whose albedo (RgbLayers::albedo) differs from the centre's by a part the
 // centre does not predict. Demodulated by the centre's albedo, the filter printed the centre's
@@ -504,15 +531,8 @@ TEST(Denoise, ClassEdgePixelsTakeTheFirstLevelsOnly) {
 // the footprint's, it divides the colour exactly and the result follows the footprint.
 TEST(Denoise, FootprintAlbedoDemodulatesATextureFinerThanAPixel) {
   const int w = 64, h = 48;
-  SyntheticFrame f = makeFrame(w, h, 12, 0.1);
-  Frame frame;
-  frame.normal = f.normal;
-  frame.depth_z = f.depth;
-  frame.albedo = ImageF(w, h, 3);
-  RgbLayers layers;
-  layers.emission = ImageF(w, h, 3);
+  auto [f, frame, layers] = layeredFrame(w, h, 12);
   layers.variance = f.variance;
-  layers.albedo = ImageF(w, h, 3);
   ImageF truth(w, h, 3);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -540,16 +560,8 @@ TEST(Denoise, FootprintAlbedoDemodulatesATextureFinerThanAPixel) {
   frame.rgb = f.noisy;
   denoiseRgb(frame, centre_only, o);
   const ImageF by_centre = frame.rgb;
-  auto relRmse = [&](const ImageF& img) {
-    double e = 0, t = 0;
-    for (size_t i = 0; i < img.data.size(); ++i) {
-      e += (img.data[i] - truth.data[i]) * (img.data[i] - truth.data[i]);
-      t += truth.data[i] * truth.data[i];
-    }
-    return std::sqrt(e / t);
-  };
-  const double noisy = relRmse(f.noisy), footprint = relRmse(by_footprint),
-               centre = relRmse(by_centre);
+  const double noisy = relRmse(f.noisy, truth), footprint = relRmse(by_footprint, truth),
+               centre = relRmse(by_centre, truth);
   EXPECT_LT(footprint, 0.4 * noisy) << "noisy " << noisy;
   EXPECT_LT(footprint, 0.04);
   EXPECT_GT(centre, 0.10) << "the centre's texture, printed on the result";
@@ -570,6 +582,75 @@ TEST(Denoise, FootprintAlbedoDemodulatesATextureFinerThanAPixel) {
     for (int x = 0; x < w; ++x)
       changed += frame.rgb.at(x, y, 0) != by_footprint.at(x, y, 0);
   EXPECT_GE(changed, 3 * h) << "the strip and its two neighbours take the pass's albedo";
+}
+
+// A varnished floor: diffuse light on a fine wood-like texture plus a sheen (the rest layer)
+// that the texture does not scale. Filtered together, divided by the albedo and multiplied by it
+// again, the sheen came back with the texture printed on it (each pixel's sheen times its albedo
+// over its neighbours'); filtered apart, the diffuse light demodulated and the sheen as it is,
+// both come out smooth, and layers.diffuse holds the filtered diffuse light.
+TEST(Denoise, AVarnishReflectionIsFilteredApartFromTheTexturedDiffuseLight) {
+  const int w = 64, h = 48;
+  auto [f, frame, layers] = layeredFrame(w, h, 13);
+  layers.diffuse = ImageF(w, h, 3);
+  layers.diffuse_variance = ImageF(w, h, 3);
+  layers.rest_variance = ImageF(w, h, 3);
+  layers.variance = ImageF(w, h, 3);
+  ImageF truth(w, h, 3), noisy(w, h, 3), truth_diffuse(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      CounterRng rng(13, RngStream::Sensor, 9, static_cast<uint32_t>(y * w + x), 0);
+      const double grain = 0.35 + 0.15 * rng.uniformDouble();  // a texel per pixel
+      const double sheen = 0.08 + 0.04 * x / w;                 // smooth over the frame
+      for (int c = 0; c < 3; ++c) {
+        const double light = f.clean.at(x, y, c) / f.albedo.at(x, y, c);
+        const double noise = (f.noisy.at(x, y, c) - f.clean.at(x, y, c)) * grain;
+        const double sheen_noise = 0.3 * sheen * standardNormal(rng);
+        frame.albedo.at(x, y, c) = layers.albedo.at(x, y, c) = static_cast<float>(grain);
+        truth_diffuse.at(x, y, c) = static_cast<float>(light * grain);
+        truth.at(x, y, c) = static_cast<float>(light * grain + sheen);
+        layers.diffuse.at(x, y, c) = static_cast<float>(light * grain + noise);
+        noisy.at(x, y, c) = static_cast<float>(light * grain + noise + sheen + sheen_noise);
+        layers.diffuse_variance.at(x, y, c) = f.variance.at(x, y, c) * grain * grain;
+        layers.rest_variance.at(x, y, c) = static_cast<float>(0.09 * sheen * sheen);
+        layers.variance.at(x, y, c) =
+            layers.diffuse_variance.at(x, y, c) + layers.rest_variance.at(x, y, c);
+      }
+    }
+  DenoiseOptions o;
+  o.edge_iterations = 0;
+  RgbLayers whole = layers;  // without the split: the light filtered together
+  whole.diffuse = ImageF();
+  frame.rgb = noisy;
+  denoiseRgb(frame, whole, o);
+  const ImageF together = frame.rgb;
+  frame.rgb = noisy;
+  denoiseRgb(frame, layers, o);
+  const ImageF apart = frame.rgb;
+  // the texture printed on the result: the slope of its error over the texel's deviation from
+  // the mean texel (the sheen over the mean texel, about 0.24, where it is printed)
+  auto printed = [&](const ImageF& img) {
+    double mean_grain = 0;
+    for (float a : layers.albedo.data) mean_grain += a;
+    mean_grain /= static_cast<double>(layers.albedo.data.size());
+    double num = 0, den = 0;
+    for (size_t i = 0; i < img.data.size(); ++i) {
+      const double d = layers.albedo.data[i] - mean_grain;
+      num += d * (img.data[i] - truth.data[i]);
+      den += d * d;
+    }
+    return num / den;
+  };
+  const double e_noisy = relRmse(noisy, truth), e_together = relRmse(together, truth),
+               e_apart = relRmse(apart, truth);
+  std::printf("rel. RMSE: noisy %.4f together %.4f apart %.4f; texture slope %.4f / %.4f\n",
+              e_noisy, e_together, e_apart, printed(together), printed(apart));
+  EXPECT_GT(printed(together), 0.1);
+  EXPECT_LT(std::fabs(printed(apart)), 0.2 * printed(together)) << "the texture on the sheen";
+  EXPECT_LT(e_apart, 0.3 * e_noisy);
+  EXPECT_LT(e_apart, 0.8 * e_together);
+  EXPECT_LT(relRmse(layers.diffuse, truth_diffuse), 0.3 * e_noisy) << "the filtered diffuse light";
+  EXPECT_NEAR(meanOf(apart) / meanOf(truth), 1.0, 0.01);
 }
 
 TEST(Denoise, ParamsSetTheNamedFieldsAndRefuseBadOnesNamingTheFlag) {

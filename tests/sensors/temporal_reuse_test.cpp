@@ -47,6 +47,7 @@ struct Rendered {
   ImageU8 used;
   ImageU8 multiplier;  // plan()'s, when boosted
   ImageF denoised;     // with smoothing: the denoiser's output before smooth()
+  ImageF denoised_diffuse;  // and its diffuse light (denoiseRgb filters it apart)
 };
 
 /// The knobs of run() beyond the window and samples.
@@ -56,6 +57,7 @@ struct RunSettings {
   float view_turn = TemporalReuseOptions{}.view_turn;  // tolerance of the glossy reuse
   int smooth = 1;         // > 1: denoise each frame and smooth it over this many
   int step = 2;           // poses of the 50-fps orbit between frames
+  bool split = true;      // smooth() the denoiser's diffuse light apart from the rest
 };
 
 /// Renders frames first..last of the built-in orbit (25 fps, every `step`-th pose: by default the
@@ -101,7 +103,8 @@ std::vector<Rendered> run(const Scene& scene, int window, int first, int last, i
     if (set.smooth > 1) {
       denoiseRgb(f.frame, f.layers, DenoiseOptions{});
       f.denoised = f.frame.rgb;
-      reuse.smooth(f.frame, f.layers);
+      f.denoised_diffuse = f.layers.diffuse;
+      reuse.smooth(f.frame, f.layers, set.split);
     }
     out.push_back(std::move(f));
   }
@@ -173,14 +176,9 @@ TEST(TemporalReuse, StaticDiffuseNoiseFallsWithTheFramesAveragedWithoutBias) {
 }
 
 /// The default room with a silver ball of `roughness` (instance 900) where the orbit looks.
-Scene roomWithSilverBall(float roughness) {
-  Material silver;
-  silver.id = "silver_ball";
-  silver.type = MaterialType::Conductor;
-  silver.metal = "silver";
-  silver.roughness = roughness;
+Scene roomWithBall(const Material& material) {
   Scene scene = makeDefaultScene();
-  scene.materials.push_back(silver);
+  scene.materials.push_back(material);
   Object o;
   o.name = "ball";
   o.mesh = static_cast<int>(scene.meshes.size());
@@ -193,6 +191,15 @@ Scene roomWithSilverBall(float roughness) {
   o.T_world_object.block<3, 1>(0, 3) = Vec3(2.5, 2.0, 1.2);
   scene.objects.push_back(o);
   return scene;
+}
+
+Scene roomWithSilverBall(float roughness) {
+  Material silver;
+  silver.id = "silver_ball";
+  silver.type = MaterialType::Conductor;
+  silver.metal = "silver";
+  silver.roughness = roughness;
+  return roomWithBall(silver);
 }
 
 TEST(TemporalReuse, NewPixelsMirrorsAndSpecularLightKeepTheirOwnFramesSamples) {
@@ -289,8 +296,9 @@ TEST(TemporalReuse, RoughGlossyLightIsReusedOnlyWhileTheViewTurnsLittle) {
 }
 
 // Smoothing, seen from a still camera (every frame's taps are the pixel itself): each interior
-// pixel's light becomes the mean of the denoised light of the last 4 frames, exactly; the mean
-// over the image does not move, and the frame-to-frame change of what the denoiser leaves falls.
+// pixel's light becomes the mean of the denoised light of the last 4 frames, exactly (the
+// diffuse light's demodulated by the footprint's albedo, the rest's as it is); the mean over the
+// image does not move, and the frame-to-frame change of what the denoiser leaves falls.
 TEST(TemporalReuse, SmoothingAveragesTheDenoisedLightOfTheLastFrames) {
   const Scene scene = makeDefaultScene();
   const int kWindow = 8, kSmooth = 4, kFrames = 10;
@@ -299,10 +307,14 @@ TEST(TemporalReuse, SmoothingAveragesTheDenoisedLightOfTheLastFrames) {
   still.step = 0;
   const std::vector<Rendered> seq = run(scene, kWindow, 0, kFrames - 1, 4, still);
   const float eps = TemporalReuseOptions{}.albedo_epsilon;
-  auto light = [&](const Rendered& f, const ImageF& rgb, size_t k) {  // demodulated
-    return (rgb.data[k] - f.layers.emission.data[k]) / std::max(f.layers.albedo.data[k], eps);
+  auto diffuse = [&](const Rendered& f, size_t k) {  // demodulated
+    return f.denoised_diffuse.data[k] / std::max(f.layers.albedo.data[k], eps);
+  };
+  auto rest = [&](const Rendered& f, size_t k) {
+    return f.denoised.data[k] - f.layers.emission.data[k] - f.denoised_diffuse.data[k];
   };
   int smoothed = 0;
+  double rest_sum = 0, light_sum = 0;
   double change_denoised = 0, change_smoothed = 0, sum_denoised = 0, sum_smoothed = 0;
   for (int k = kSmooth; k < kFrames; ++k) {
     const Rendered& f = seq[k];
@@ -311,11 +323,17 @@ TEST(TemporalReuse, SmoothingAveragesTheDenoisedLightOfTheLastFrames) {
       ++smoothed;
       for (int c = 0; c < 3; ++c) {
         const size_t at = i * 3 + c;
-        double mean = 0;
-        for (int j = k - kSmooth + 1; j <= k; ++j) mean += light(seq[j], seq[j].denoised, at);
+        double mean = 0, mean_rest = 0;
+        for (int j = k - kSmooth + 1; j <= k; ++j) {
+          mean += diffuse(seq[j], at);
+          mean_rest += rest(seq[j], at);
+        }
         mean /= kSmooth;
+        mean_rest /= kSmooth;
         const double expected = f.layers.emission.data[at] +
-                                mean * std::max(f.layers.albedo.data[at], eps);
+                                mean * std::max(f.layers.albedo.data[at], eps) + mean_rest;
+        rest_sum += std::abs(mean_rest);
+        light_sum += expected - f.layers.emission.data[at];
         ASSERT_NEAR(f.frame.rgb.data[at], expected, 1e-4 * (1.0 + std::abs(expected)))
             << "frame " << k << " pixel " << i;
         change_denoised += std::abs(f.denoised.data[at] - seq[k - 1].denoised.data[at]);
@@ -325,11 +343,60 @@ TEST(TemporalReuse, SmoothingAveragesTheDenoisedLightOfTheLastFrames) {
       }
     }
   }
-  std::printf("%d px smoothed; frame-to-frame change denoised / smoothed %.2f; mean %+.4f\n",
-              smoothed, change_denoised / change_smoothed, sum_smoothed / sum_denoised - 1);
+  std::printf("%d px smoothed; frame-to-frame change denoised / smoothed %.2f; mean %+.4f; "
+              "rest %.1f %% of the light\n",
+              smoothed, change_denoised / change_smoothed, sum_smoothed / sum_denoised - 1,
+              100 * rest_sum / light_sum);
   EXPECT_GT(smoothed, (kFrames - kSmooth) * 96 * 72 / 2);
   EXPECT_GT(change_denoised / change_smoothed, 1.5);
   EXPECT_LT(std::abs(sum_smoothed / sum_denoised - 1), 0.005);
+}
+
+// A varnished ball seen from the moving orbit: its sheen changes with the view, its diffuse
+// light does not. Smoothed apart (what denoiseRgb's split allows), the diffuse light is averaged
+// over the last frames however far the view turned; smoothed together, the whole light waits
+// for a view within the sheen's tolerance, which the orbit leaves at once.
+TEST(TemporalReuse, SmoothingAveragesAVarnishsDiffuseLightWhateverTheViewTurn) {
+  Material varnish;
+  varnish.id = "varnished_ball";
+  varnish.type = MaterialType::Plastic;
+  varnish.albedo = {0.6f, 0.4f, 0.25f};
+  varnish.roughness = 0.3f;
+  const Scene scene = roomWithBall(varnish);
+  const int kWindow = 6, kFrames = 6;
+  RunSettings set;
+  set.smooth = 4;
+  const std::vector<Rendered> apart = run(scene, kWindow, 0, kFrames - 1, 4, set);
+  set.split = false;
+  const std::vector<Rendered> together = run(scene, kWindow, 0, kFrames - 1, 4, set);
+  int ball = 0, smoothed_apart = 0, smoothed_together = 0;
+  double sum_apart = 0, sum_together = 0, sheen = 0, light = 0;
+  for (int k = 3; k < kFrames; ++k)
+    for (int y = 0; y < 72; ++y)
+      for (int x = 0; x < 96; ++x) {
+        const Rendered& a = apart[k];
+        if (a.frame.instance.at(x, y) != 900 || !interior(a.frame.instance, x, y) ||
+            a.used.at(x, y) != k + 1)
+          continue;
+        ++ball;
+        smoothed_apart += a.frame.rgb.at(x, y, 0) != a.denoised.at(x, y, 0);
+        smoothed_together += together[k].frame.rgb.at(x, y, 0) != together[k].denoised.at(x, y, 0);
+        for (int c = 0; c < 3; ++c) {
+          sum_apart += a.frame.rgb.at(x, y, c);
+          sum_together += together[k].frame.rgb.at(x, y, c);
+          sheen += a.denoised.at(x, y, c) - a.denoised_diffuse.at(x, y, c);
+          light += a.denoised.at(x, y, c);
+        }
+      }
+  std::printf("varnished ball: %d px, smoothed apart %d, together %d; sheen %.1f %% of its "
+              "light; mean apart / together %+.4f\n",
+              ball, smoothed_apart, smoothed_together, 100 * sheen / light,
+              sum_apart / sum_together - 1);
+  EXPECT_GT(ball, 150) << "the ball is in view";
+  EXPECT_GT(sheen, 0.02 * light) << "the varnish reflects";
+  EXPECT_GT(smoothed_apart, ball * 9 / 10);
+  EXPECT_LT(smoothed_together, ball / 10) << "the view turned beyond the sheen's tolerance";
+  EXPECT_LT(std::abs(sum_apart / sum_together - 1), 0.02);
 }
 
 // With smoothing a late start warms up on warmUpFrames() frames: window - 1 for the reuse, and
