@@ -374,13 +374,16 @@ void TemporalReuse::smooth(Frame& frame, const RgbLayers& layers, bool split) {
         for (size_t j = remembered; j-- > first;) {
           const size_t s = j + added_.popped;
           const Taps& t = source[s][i];
-          if (t.count == 0 || past_[j].filtered.data.empty()) continue;
+          // a frame smoothed the other way holds the other light in `filtered`
+          if (t.count == 0 || past_[j].filtered.data.empty() ||
+              past_[j].filtered_rest.data.empty() == split)
+            continue;
           const bool turned_little = turn[s][i] <= max_turn;
           if (split || turned_little) {
             for (int c = 0; c < 3; ++c) sum[c] += interpolate(t, past_[j].filtered, c);
             ++n;
           }
-          if (split && turned_little && !past_[j].filtered_rest.data.empty()) {
+          if (split && turned_little) {
             for (int c = 0; c < 3; ++c) rest[c] += interpolate(t, past_[j].filtered_rest, c);
             ++n_rest;
           }
