@@ -90,7 +90,7 @@ TemporalReuse::Past TemporalReuse::geometryOf(const Frame& f, const Pose& T_worl
   // is per instance); otherwise the class and the depths decide (see interiorPixels)
   const ImageU16* instance = has_motion_ ? &f.instance : nullptr;
   return Past{T_world_camera, scene_time_s, depth, instance ? *instance : ImageU16(), f.label,
-              {}, {}, interiorPixels(f.label, instance, depth), {}, {}, {}, {}};
+              {}, {}, interiorPixels(f.label, instance, depth), {}, {}, {}, {}, {}};
 }
 
 TemporalReuse::Reprojection TemporalReuse::reproject(const Frame& f, const Pose& T_world_camera,
