@@ -175,6 +175,7 @@ TemporalReuseOptions reuseOptions(const SequenceJob& a) {
   t.boost = a.history_boost;
   t.boost_edges = a.history_boost_edges;
   t.smooth = a.denoise ? a.temporal_smooth : 1;  // it smooths what the denoiser leaves
+  t.firefly_ratio = a.temporal_firefly;
   return t;
 }
 
@@ -196,7 +197,8 @@ void validateArgs(const SequenceJob& a) {
     throw InputError("", "--readout-ms", "must be in 0..10000");
   if (a.temporal < 1 || a.temporal > 64)
     throw InputError("", "--temporal", "the window must be in 1..64 frames (1 = off)");
-  // --history-boost, --history-boost-edges, --temporal-smooth (even where no denoiser uses it)
+  // --history-boost, --history-boost-edges, --temporal-smooth, --temporal-firefly (even where
+  // no denoiser uses them)
   TemporalReuseOptions reuse = reuseOptions(a);
   reuse.smooth = a.temporal_smooth;
   reuse.validate("");

@@ -68,6 +68,8 @@ struct SequenceJob {
   /// Frames the denoised light is averaged over after temporal reuse
   /// (TemporalReuseOptions::smooth); 1 = off.
   int temporal_smooth = 4;
+  /// Temporal reuse's firefly test (TemporalReuseOptions::firefly_ratio); 0 = off.
+  float temporal_firefly = 16.f;
   double exposure_ms = 0.0;
   double readout_ms = 0.0;
   LensSettings lens;

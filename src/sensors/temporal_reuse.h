@@ -42,14 +42,28 @@
 // smooth coatings) and glass have alpha 0: their rest is never reused. Points on a moving object
 // count as turned too far (their rest stays as rendered).
 //
+// Fireflies (`firefly_ratio`): a sample that found a small, bright path (the sun reflected by a
+// smooth coating or a pane, which only a BSDF sample finds) can make a pixel's own light
+// thousands of times that of the pixels around it; once in the window, later frames read it
+// through their bilinear taps, spread over 4 pixels and each about as bright as its neighbours,
+// which the denoiser's one-pixel firefly test no longer sees: the filter spread one such sample
+// of a 64-spp frame of apartment 3 over a 3,900-px blotch that lasted the window. So before
+// frame k's own light is used or remembered, an interior pixel (one surface around it) whose
+// demodulated luminance is more than firefly_ratio times that of all 8 neighbours takes the
+// irradiance and variance of the neighbour of median luminance (its output too, where the
+// window gives it reused light). Texture is divided out and the neighbours are the same
+// surface, so real detail is never that far from all of them; the light it drops is that
+// sample's, a bias toward darker that is 0 in frames without such samples (docs/denoise.md
+// gives its size on apartment 3).
+//
 // Smoothing after the denoiser (`smooth`, M frames): the filtered light still changes from frame
 // to frame (the filter's colour weights follow the noise). smooth() replaces the filtered,
 // demodulated light of an interior pixel by its mean over the last M frames' filtered light at
 // the same point (the same taps). Where the denoiser filtered the diffuse light apart
 // (denoiseRgb), the diffuse light takes every such frame and the rest only the frames whose
 // view is within the tolerance above, as in add(); otherwise the whole light takes only those
-// (or any frame where the surface has no view-dependent lobe). The filtered frames share most of their
-// reused samples, so their errors are alike: the mean changes slowly, which is what it is for
+// (or any frame where the surface has no view-dependent lobe). The filtered frames share most of
+// their reused samples, so their errors are alike: the mean changes slowly, which is what it is for
 // (frame to frame flicker of apartment 3's walls 2.4 % -> 1.1 % at M = 4, docs/denoise.md 1b).
 //
 // Exactness: each I_j estimates the same quantity (for a static scene and static lights), so
@@ -107,6 +121,11 @@ struct TemporalReuseOptions {
   /// Frames smooth() averages the filtered light over, the current one included (1 = off); a
   /// window shorter than this shortens it (smoothFrames()).
   int smooth = 4;
+  /// A pixel whose own demodulated diffuse light is more than this many times as bright as that
+  /// of every one of its 8 neighbours (an interior pixel: one surface) is one rare sample of a
+  /// bright path; before the window keeps it, it takes the light of its neighbour of median
+  /// brightness (see add()). 0 = off.
+  float firefly_ratio = 16.f;
   FlowOptions flow;              ///< the visibility test's depth tolerances
 
   /// Throws InputError(where, "--temporal", ...) for a window outside 1..64, and names the
@@ -162,6 +181,13 @@ class TemporalReuse {
   }
   /// Frames remembered (at most window - 1).
   int remembered() const { return static_cast<int>(past_.size()); }
+  /// What the firefly test (TemporalReuseOptions::firefly_ratio) took from a frame.
+  struct Fireflies {
+    size_t pixels = 0;         ///< pixels whose own diffuse light it replaced
+    double light_share = 0.0;  ///< their excess luminance over the frame's demodulated total
+  };
+  /// The last add()ed frame's.
+  const Fireflies& fireflies() const { return fireflies_; }
 
  private:
   struct Past {
@@ -219,6 +245,7 @@ class TemporalReuse {
   std::unique_ptr<Reprojection> planned_;  ///< plan()'s, for the next add()
   ImageU8 planned_multiplier_;             ///< plan()'s answer
   Added added_;                            ///< the last add()'s
+  Fireflies fireflies_;                    ///< fireflies()
 };
 
 }  // namespace inet

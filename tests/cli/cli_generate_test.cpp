@@ -699,6 +699,11 @@ TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
     EXPECT_NE(bad.exit_code, 0) << smooth;
     EXPECT_NE(bad.err.find("--temporal-smooth"), std::string::npos) << bad.err;
   }
+  for (const char* ratio : {"--temporal-firefly 1", "--temporal-firefly -3"}) {
+    RunResult bad = runInterinet(kSmall + ratio + out);
+    EXPECT_NE(bad.exit_code, 0) << ratio;
+    EXPECT_NE(bad.err.find("--temporal-firefly"), std::string::npos) << bad.err;
+  }
   RunResult blur = runInterinet(kSmall + "--temporal 4 --exposure-ms 5" + out);
   EXPECT_NE(blur.exit_code, 0);
   EXPECT_NE(blur.err.find("global shutter"), std::string::npos) << blur.err;

@@ -6,6 +6,7 @@
 //  - a rough glossy ball's view-dependent light is reused while the view turns little, and only
 //    then;
 //  - smoothing averages the denoised light of the last frames, and steadies it;
+//  - one frame's firefly does not enter the window;
 //  - a window started late (after warm-up frames) gives the same bytes as one run from frame 0,
 //    with one thread or many.
 #include "sensors/temporal_reuse.h"
@@ -573,6 +574,69 @@ TEST(TemporalReuse, AMovingObjectIsFollowedByItsMotion) {
   EXPECT_NEAR(box_sum / box_full, expected, 0.02 * expected);
 }
 
+// One bright sample in frame 0 (a pixel of a wall 1,000 times its own light, as a lone path
+// through a lamp's shade makes it) must not reach the frames after it: later frames read it
+// through bilinear taps, spread over 4 pixels, where the denoiser's one-pixel test no longer
+// sees it. With the firefly test (the default) frame 1's brightest diffuse light is what it is
+// without the injected sample; with the test off (ratio 0) it carries the sample.
+TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
+  const Scene scene = makeDefaultScene();
+  const LensModel lens = smallLens();
+  Renderer r(scene);
+  const Trajectory traj = builtinTrajectory(4, 25.0);
+  // frame 1's brightest demodulated diffuse light, frame 0 given a firefly at (x, y) or not
+  auto brightest = [&](float ratio, bool inject, size_t* caught) {
+    TemporalReuseOptions opt;
+    opt.window = 2;
+    opt.boost = opt.boost_edges = 1;
+    opt.firefly_ratio = ratio;
+    TemporalReuse reuse(scene, lens, opt);
+    double most = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      const Pose& T = traj.poses[2 * k].T_world_camera;
+      Frame f;
+      RgbLayers layers;
+      r.render(lens, CameraExposure::fixed(T), colour(16), static_cast<uint32_t>(k), f, &layers);
+      if (k == 0 && inject) {
+        // the first wall pixel of the middle row whose 5x5 neighbourhood is one instance
+        int at = -1;
+        for (int x = 10; x < 86 && at < 0; ++x) {
+          bool same = layers.diffuse.at(x, 36, 1) > 0.f;
+          for (int dy = -2; dy <= 2 && same; ++dy)
+            for (int dx = -2; dx <= 2 && same; ++dx)
+              same = f.instance.at(x + dx, 36 + dy) == f.instance.at(x, 36);
+          if (same) at = x;
+        }
+        EXPECT_GE(at, 0) << "no wall pixel in the middle row";
+        for (int c = 0; c < 3 && at >= 0; ++c) {
+          const float extra = 999.f * layers.diffuse.at(at, 36, c);
+          layers.diffuse.at(at, 36, c) += extra;
+          f.rgb.at(at, 36, c) += extra;
+        }
+      }
+      reuse.add(f, layers, T, 0.0);
+      if (k == 0 && caught) *caught = reuse.fireflies().pixels;
+      if (k == 1)
+        for (size_t i = 0; i < layers.diffuse.data.size(); ++i)
+          most = std::max(most, static_cast<double>(layers.diffuse.data[i]) /
+                                    std::max(layers.albedo.data[i], 0.01f));
+    }
+    return most;
+  };
+  size_t caught = 0, caught_clean = 0, caught_off = 0;
+  const double clean = brightest(TemporalReuseOptions{}.firefly_ratio, false, &caught_clean);
+  const double tested = brightest(TemporalReuseOptions{}.firefly_ratio, true, &caught);
+  const double off = brightest(0.f, true, &caught_off);
+  std::printf(
+      "frame 1's brightest irradiance: clean %.3g, firefly tested %.3g, untested %.3g; "
+      "frame 0's pixels taken as fireflies: %zu clean, %zu injected\n",
+      clean, tested, off, caught_clean, caught);
+  EXPECT_EQ(caught_off, 0u);
+  EXPECT_GE(caught, caught_clean + 1) << "the injected sample was not caught";
+  EXPECT_LE(tested, 1.05 * clean) << "the firefly reached frame 1";
+  EXPECT_GT(off, 10.0 * clean) << "without the test the sample should carry (the test's premise)";
+}
+
 TEST(TemporalReuse, BadWindowIsAnInputError) {
   const Scene scene = makeDefaultScene();
   TemporalReuseOptions opt;
@@ -596,6 +660,14 @@ TEST(TemporalReuse, BadWindowIsAnInputError) {
   opt.smooth = 4;
   opt.view_turn = -1.f;
   EXPECT_THROW(TemporalReuse(scene, smallLens(), opt), InputError);
+  opt.view_turn = 0.1f;
+  opt.firefly_ratio = 1.f;  // every pixel brighter than its neighbours would be a firefly
+  try {
+    TemporalReuse reuse(scene, smallLens(), opt);
+    FAIL() << "firefly ratio 1 accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "--temporal-firefly");
+  }
 }
 
 }  // namespace
