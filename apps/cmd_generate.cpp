@@ -218,11 +218,12 @@ void registerGenerate(CLI::App& app) {
                   "with temporal reuse and the denoiser: average each surface point's denoised "
                   "light over the last N frames (at most the --temporal window), so that what the "
                   "filter leaves changes slowly from frame to frame (default 4; 1 = off)");
-  cmd->add_option("--temporal-firefly", a->temporal_firefly,
-                  "with temporal reuse: a pixel whose own diffuse light (texture divided out) is "
-                  "more than R times that of all 8 neighbours on its surface is one rare bright "
-                  "sample; it takes its median neighbour's light before the window keeps it, "
-                  "so that later frames do not spread it into a blotch (default 16; 0 = off)");
+  cmd->add_option(
+      "--temporal-firefly", a->temporal_firefly,
+      "with temporal reuse: a pixel whose own diffuse light (texture divided out) is "
+      "more than this many times that of all 8 neighbours on its surface is one rare bright "
+      "sample; it takes its median neighbour's light before the window keeps it, "
+      "so that later frames do not spread it into a blotch (default 16; 0 = off)");
   cmd->add_flag("--allow-dark", a->allow_dark,
                 "write the sequence even when its colour frames are essentially black (mean "
                 "below 1/1000 of white, checked on a preview of 5 poses before anything is "

@@ -501,38 +501,21 @@ void validateDenoiseOptions(const DenoiseOptions& o, const std::string& where) {
 /// times that of every one of its (at least 5) valid 8-neighbours is an isolated outlier, i.e. one
 /// sample that found a small, bright light path (a lamp seen through its shade, a caustic). The
 /// à-trous filter would spread it into a blotch, so it takes the colour of its neighbour of
-/// median luminance instead. Real features are never a single pixel brighter than all around
-/// it by that much in irradiance (texture is divided out, directly seen lights are not in the
-/// signal). Reads `in`, writes a copy: independent of the order of pixels and threads.
+/// median luminance instead (loneBrightPixels). Real features are never a single pixel brighter
+/// than all around it by that much in irradiance (texture is divided out, directly seen lights
+/// are not in the signal).
 constexpr float kFireflyRatio = 4.f;
 
 void rejectFireflies(const Guide& g, Signal& a) {
-  const Signal in = a;
-  forEachRow(g.height, [&](int y) {
-    for (int x = 0; x < g.width; ++x) {
-      const size_t i = static_cast<size_t>(y) * g.width + x;
-      if (g.valid[i] == 0.f) continue;
-      std::array<std::pair<float, size_t>, 8> nb;
-      int n = 0;
-      float brightest = 0.f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if ((dx == 0 && dy == 0) || xx < 0 || yy < 0 || xx >= g.width || yy >= g.height) continue;
-          const size_t j = static_cast<size_t>(yy) * g.width + xx;
-          if (g.valid[j] == 0.f) continue;
-          nb[n++] = {in.lum[j], j};
-          brightest = std::max(brightest, in.lum[j]);
-        }
-      if (n < 5 || !(in.lum[i] > kFireflyRatio * brightest + 1e-6f)) continue;
-      std::nth_element(nb.begin(), nb.begin() + n / 2, nb.begin() + n);
-      const size_t m = nb[n / 2].second;
-      a.r[i] = in.r[m];
-      a.g[i] = in.g[m];
-      a.b[i] = in.b[m];
-      a.lum[i] = in.lum[m];
-    }
-  });
+  std::vector<uint8_t> valid(g.size());
+  for (size_t i = 0; i < valid.size(); ++i) valid[i] = g.valid[i] != 0.f;
+  for (const PixelSwap& s : loneBrightPixels(g.width, g.height, a.lum.data(), valid.data(),
+                                             valid.data(), kFireflyRatio, 5)) {
+    a.r[s.pixel] = a.r[s.with];
+    a.g[s.pixel] = a.g[s.with];
+    a.b[s.pixel] = a.b[s.with];
+    a.lum[s.pixel] = a.lum[s.with];
+  }
 }
 
 /// `levels` à-trous levels of s without the colour stop: the local mean of s over the pixels
@@ -633,6 +616,37 @@ std::vector<ImageF> filterLevels(const ImageF& rgb, const ImageF& albedo, const 
 }
 
 }  // namespace
+
+std::vector<PixelSwap> loneBrightPixels(int width, int height, const float* lum,
+                                        const uint8_t* centre, const uint8_t* neighbour,
+                                        float ratio, int min_neighbours) {
+  std::vector<std::vector<PixelSwap>> rows(static_cast<size_t>(std::max(0, height)));
+  forEachRow(height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t i = static_cast<size_t>(y) * width + x;
+      if (centre && centre[i] == 0) continue;
+      std::array<std::pair<float, size_t>, 8> nb;
+      int n = 0;
+      float brightest = 0.f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if ((dx == 0 && dy == 0) || xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
+          const size_t j = static_cast<size_t>(yy) * width + xx;
+          if (neighbour && neighbour[j] == 0) continue;
+          nb[n++] = {lum[j], j};
+          brightest = std::max(brightest, lum[j]);
+        }
+      if (n < min_neighbours || !(lum[i] > ratio * brightest + 1e-6f)) continue;
+      // (luminance, index) pairs: ties go by index, the same neighbour on every run
+      std::nth_element(nb.begin(), nb.begin() + n / 2, nb.begin() + n);
+      rows[static_cast<size_t>(y)].push_back({i, nb[n / 2].second});
+    }
+  });
+  std::vector<PixelSwap> out;
+  for (const std::vector<PixelSwap>& row : rows) out.insert(out.end(), row.begin(), row.end());
+  return out;
+}
 
 std::vector<ImageF> denoiseLevels(const ImageF& rgb, const ImageF& albedo, const ImageF& normal,
                                   const ImageF& depth, const ImageF* variance,

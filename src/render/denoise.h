@@ -38,6 +38,8 @@
 // Deterministic: every output pixel is a fixed-order sum over its own taps, so 1 or N threads
 // give identical bytes. Never apply it to ground-truth passes (they are exact), and it is off by
 // default in the renderer: it trades noise for bias.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -158,6 +160,23 @@ struct WindowViewLayers {
 /// as for renders below kNeighbourhoodVarianceBelowSpp.
 void filterWindowView(ImageF& rgb, ImageF& emission, const WindowViewLayers& view,
                       const DenoiseOptions& options, bool few_samples);
+
+/// A pixel and the pixel whose value replaces it (loneBrightPixels).
+struct PixelSwap {
+  size_t pixel = 0, with = 0;
+};
+
+/// One-sample fireflies of a `width` x `height` image of luminances `lum` (row-major): each pixel
+/// p with centre[p] != 0 whose luminance is more than `ratio` times that of every one of its
+/// 8-neighbours q with neighbour[q] != 0 (at least `min_neighbours` of them), paired with the
+/// neighbour of median luminance (ties broken by index). A null mask takes every pixel. In row
+/// order, whatever the thread count. With ratio >= 1 and every listed pixel a usable neighbour
+/// of its own neighbours, no pixel's replacement is itself listed, so a caller may replace in
+/// place. Used by the denoiser's step 0 and by temporal reuse before its window keeps a frame
+/// (sensors/temporal_reuse.h).
+std::vector<PixelSwap> loneBrightPixels(int width, int height, const float* lum,
+                                        const uint8_t* centre, const uint8_t* neighbour,
+                                        float ratio, int min_neighbours);
 
 /// Denoises frame.rgb - layers.emission, guided by the frame's normal and z-depth, by
 /// layers.variance and by the footprint's albedo (layers.albedo; the frame's albedo pass where

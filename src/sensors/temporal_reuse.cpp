@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -45,57 +44,30 @@ ImageU8 interiorPixels(const ImageU8& label, const ImageU16* instance, const Ima
 }
 
 /// TemporalReuseOptions::firefly_ratio: an interior pixel whose luminance in `irradiance` is more
-/// than `ratio` times that of every one of its 8 neighbours takes the irradiance and variance of
-/// the neighbour of median luminance. Reads copies, so the result does not depend on the order
-/// of pixels or threads. Returns how many pixels it changed and the share of the image's
-/// luminance (over all pixels) it took away.
+/// than `ratio` times that of every one of its 8 neighbours (one surface, as it is interior)
+/// takes the irradiance and variance of the neighbour of median luminance (loneBrightPixels).
+/// Returns how many pixels it changed and the share of the image's luminance they lost.
 TemporalReuse::Fireflies rejectFireflies(const ImageU8& interior, float ratio, ImageF& irradiance,
                                          ImageF& variance) {
   if (!(ratio > 0.f)) return {};
-  const int W = irradiance.width, H = irradiance.height;
-  auto lum = [&](const ImageF& im, size_t i) {
-    return luminance(Vec3f(im.data[3 * i], im.data[3 * i + 1], im.data[3 * i + 2]));
-  };
-  std::vector<float> l(static_cast<size_t>(W) * H);
-  for (size_t i = 0; i < l.size(); ++i) l[i] = lum(irradiance, i);
-  // per row: (pixel, its median neighbour)
-  std::vector<std::vector<std::pair<size_t, size_t>>> rows(static_cast<size_t>(H));
-  tbb::parallel_for(tbb::blocked_range<int>(1, std::max(1, H - 1)),
-                    [&](const tbb::blocked_range<int>& range) {
-                      for (int y = range.begin(); y < range.end(); ++y)
-                        for (int x = 1; x + 1 < W; ++x) {
-                          const size_t i = static_cast<size_t>(y) * W + x;
-                          if (!interior.data[i]) continue;
-                          std::array<std::pair<float, size_t>, 8> nb;
-                          int n = 0;
-                          float brightest = 0.f;
-                          for (int dy = -1; dy <= 1; ++dy)
-                            for (int dx = -1; dx <= 1; ++dx) {
-                              if (dx == 0 && dy == 0) continue;
-                              const size_t j = static_cast<size_t>(y + dy) * W + (x + dx);
-                              nb[n++] = {l[j], j};
-                              brightest = std::max(brightest, l[j]);
-                            }
-                          if (!(l[i] > ratio * brightest + 1e-6f)) continue;
-                          // ties broken by index: the same neighbour whatever the sort does with
-                          // equal keys
-                          std::nth_element(nb.begin(), nb.begin() + 4, nb.end());
-                          rows[static_cast<size_t>(y)].push_back({i, nb[4].second});
-                        }
-                    });
-  const ImageF irr = irradiance, var = variance;
+  std::vector<float> l(irradiance.data.size() / 3);
+  double total = 0.0;
+  for (size_t i = 0; i < l.size(); ++i) {
+    l[i] = luminance(
+        Vec3f(irradiance.data[3 * i], irradiance.data[3 * i + 1], irradiance.data[3 * i + 2]));
+    total += l[i];
+  }
   TemporalReuse::Fireflies out;
-  double removed = 0.0, total = 0.0;
-  for (const float v : l) total += v;
-  for (const auto& row : rows)
-    for (const auto& [i, m] : row) {
-      for (int c = 0; c < 3; ++c) {
-        irradiance.data[3 * i + c] = irr.data[3 * m + c];
-        variance.data[3 * i + c] = var.data[3 * m + c];
-      }
-      removed += static_cast<double>(l[i]) - l[m];
-      ++out.pixels;
+  double removed = 0.0;
+  for (const PixelSwap& s : loneBrightPixels(irradiance.width, irradiance.height, l.data(),
+                                             interior.data.data(), nullptr, ratio, 8)) {
+    for (int c = 0; c < 3; ++c) {
+      irradiance.data[3 * s.pixel + c] = irradiance.data[3 * s.with + c];
+      variance.data[3 * s.pixel + c] = variance.data[3 * s.with + c];
     }
+    removed += static_cast<double>(l[s.pixel]) - l[s.with];
+    ++out.pixels;
+  }
   out.light_share = total > 0.0 ? removed / total : 0.0;
   return out;
 }

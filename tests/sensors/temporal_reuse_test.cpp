@@ -574,9 +574,9 @@ TEST(TemporalReuse, AMovingObjectIsFollowedByItsMotion) {
   EXPECT_NEAR(box_sum / box_full, expected, 0.02 * expected);
 }
 
-// One bright sample in frame 0 (a pixel of a wall 1,000 times its own light, as a lone path
-// through a lamp's shade makes it) must not reach the frames after it: later frames read it
-// through bilinear taps, spread over 4 pixels, where the denoiser's one-pixel test no longer
+// One bright sample in frame 0 (a pixel of a wall 1,000 times its own light, as a caustic of
+// the sun found by one BSDF sample makes it) must not reach the frames after it: later frames read
+// it through bilinear taps, spread over 4 pixels, where the denoiser's one-pixel test no longer
 // sees it. With the firefly test (the default) frame 1's brightest diffuse light is what it is
 // without the injected sample; with the test off (ratio 0) it carries the sample.
 TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
@@ -585,7 +585,11 @@ TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
   Renderer r(scene);
   const Trajectory traj = builtinTrajectory(4, 25.0);
   // frame 1's brightest demodulated diffuse light, frame 0 given a firefly at (x, y) or not
-  auto brightest = [&](float ratio, bool inject, size_t* caught) {
+  // `share`: what the test reported of frame 0's light, and what the injected sample added to it
+  struct Share {
+    double reported = 0.0, injected = 0.0;
+  };
+  auto brightest = [&](float ratio, bool inject, size_t* caught, Share* share = nullptr) {
     TemporalReuseOptions opt;
     opt.window = 2;
     opt.boost = opt.boost_edges = 1;
@@ -608,14 +612,29 @@ TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
           if (same) at = x;
         }
         EXPECT_GE(at, 0) << "no wall pixel in the middle row";
+        double extra_lum = 0.0;
         for (int c = 0; c < 3 && at >= 0; ++c) {
           const float extra = 999.f * layers.diffuse.at(at, 36, c);
           layers.diffuse.at(at, 36, c) += extra;
           f.rgb.at(at, 36, c) += extra;
+          extra_lum += (c == 0   ? 0.2126
+                        : c == 1 ? 0.7152
+                                 : 0.0722) *
+                       extra / std::max(layers.albedo.at(at, 36, c), 0.01f);
+        }
+        if (share) {  // the frame's demodulated luminance, the sample included
+          double total = 0.0;
+          for (size_t i = 0; i < layers.diffuse.data.size(); ++i)
+            total += (i % 3 == 0   ? 0.2126
+                      : i % 3 == 1 ? 0.7152
+                                   : 0.0722) *
+                     layers.diffuse.data[i] / std::max(layers.albedo.data[i], 0.01f);
+          share->injected = extra_lum / total;
         }
       }
       reuse.add(f, layers, T, 0.0);
       if (k == 0 && caught) *caught = reuse.fireflies().pixels;
+      if (k == 0 && share) share->reported = reuse.fireflies().light_share;
       if (k == 1)
         for (size_t i = 0; i < layers.diffuse.data.size(); ++i)
           most = std::max(most, static_cast<double>(layers.diffuse.data[i]) /
@@ -625,7 +644,8 @@ TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
   };
   size_t caught = 0, caught_clean = 0, caught_off = 0;
   const double clean = brightest(TemporalReuseOptions{}.firefly_ratio, false, &caught_clean);
-  const double tested = brightest(TemporalReuseOptions{}.firefly_ratio, true, &caught);
+  Share share;
+  const double tested = brightest(TemporalReuseOptions{}.firefly_ratio, true, &caught, &share);
   const double off = brightest(0.f, true, &caught_off);
   std::printf(
       "frame 1's brightest irradiance: clean %.3g, firefly tested %.3g, untested %.3g; "
@@ -634,6 +654,12 @@ TEST(TemporalReuse, AFireflyOfOneFrameDoesNotEnterTheWindow) {
   EXPECT_EQ(caught_off, 0u);
   EXPECT_GE(caught, caught_clean + 1) << "the injected sample was not caught";
   EXPECT_LE(tested, 1.05 * clean) << "the firefly reached frame 1";
+  // the light it took is the injected sample's (less its median neighbour's, a 1/1000 part)
+  std::printf("light taken %.5f of frame 0's, injected %.5f\n", share.reported, share.injected);
+  EXPECT_GE(share.reported, 0.99 * share.injected);
+  if (caught == 1) {  // nothing else taken
+    EXPECT_LE(share.reported, 1.01 * share.injected);
+  }
   EXPECT_GT(off, 10.0 * clean) << "without the test the sample should carry (the test's premise)";
 }
 
