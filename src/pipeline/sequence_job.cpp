@@ -316,6 +316,13 @@ nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const Render
     m["render"]["lamp_photons"] =
         "point and spot lights' light connected by way of the surfaces near them it lands on "
         "(render/path_tracer.cpp, Photons)";
+  if (opt.radiance_cache)
+    m["render"]["radiance_cache"] = {
+        {"what", "light past the second rough vertex from a per-frame cache of what Lambertian "
+                 "surfaces send on (render/radiance_cache.h)"},
+        {"cell_m", opt.radiance_cache_config.cell_m},
+        {"train_spp", opt.radiance_cache_config.train_spp},
+        {"min_records", opt.radiance_cache_config.min_records}};
   if (!opt.denoise) {
     m["render"]["denoise"] = "off";
   } else if (a.denoiser == "learned") {
@@ -1024,6 +1031,9 @@ SequenceJobResult runSequenceJob(const SequenceJob& a) {
   opt.light_cache = a.light_cache;
   opt.sun_photons = a.sun_photons;
   opt.lamp_photons = a.lamp_photons;
+  opt.radiance_cache = a.radiance_cache;
+  opt.radiance_cache_config.cell_m = static_cast<float>(a.radiance_cell_m);
+  opt.radiance_cache_config.train_spp = a.radiance_train;
   stopIfSignalled("before the first frame");
   SequenceJobResult result;
   const auto t1 = std::chrono::steady_clock::now();

@@ -716,6 +716,31 @@ TEST(Generate, TemporalReuseRejectsBadWindowsAndMotionBlurButIsOnByDefault) {
   EXPECT_NE(meta.find("\"denoise\": \"iterations="), std::string::npos) << meta;
 }
 
+// The radiance cache (render/radiance_cache.h) is on by default and meta.json says so with its
+// settings; --no-radiance-cache renders other colour; bad settings name their flag.
+TEST(Generate, TheRadianceCacheIsOnByDefaultSaysSoAndRejectsBadSettings) {
+  TempDir dir("gen_radiance");
+  const std::string args = kSmall + "--hdr --frames 1 --spp 2 --passes rgb --format asl --imu 0 ";
+  RunResult on = runInterinet(args + "--out " + (dir / "on").string());
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  const std::string meta = readTextFile(seqDir(dir / "on") / "meta.json");
+  EXPECT_NE(meta.find("\"radiance_cache\""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"train_spp\": 8"), std::string::npos) << meta;
+  RunResult off = runInterinet(args + "--no-radiance-cache --out " + (dir / "off").string());
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_EQ(readTextFile(seqDir(dir / "off") / "meta.json").find("\"radiance_cache\""),
+            std::string::npos);
+  const std::string frame = "default_room/seq_000/cam0/data/0000000000000000000.exr";
+  EXPECT_NE(readTree(dir / "on").at(frame), readTree(dir / "off").at(frame));
+  for (const char* bad : {"--radiance-cell 0", "--radiance-cell 9", "--radiance-train 0"}) {
+    RunResult r = runInterinet(args + bad + " --out " + (dir / "bad").string());
+    EXPECT_NE(r.exit_code, 0) << bad;
+    const std::string flag = std::string(bad).substr(0, std::string(bad).find(' '));
+    EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "bad")) << "nothing written";
+}
+
 TEST(Generate, CtrlCStopsCleanlyAndResumes) {
   TempDir dir("gen_int");
   fs::path out = dir / "out";
