@@ -187,7 +187,7 @@ void registerGenerate(CLI::App& app) {
   cmd->add_flag("--radiance-cache,!--no-radiance-cache", a->radiance_cache,
                 "radiance cache: a sparse training pass of full paths records, in 25 cm cells, "
                 "what the rough surfaces of the view send on; paths then stop after their "
-                "second rough bounce and take the cell's mean instead of bouncing on. Less "
+                "first rough bounce and take the cell's mean instead of bouncing on. Less "
                 "noise in less time; the cache's own noise is shared by the frame (its mean "
                 "within about 0.5 %). On by default; --no-radiance-cache bounces on "
                 "(docs/rendering.md)");
@@ -196,7 +196,7 @@ void registerGenerate(CLI::App& app) {
       ->check(CLI::Range(0.02, 5.0));
   cmd->add_option("--radiance-train", a->radiance_train,
                   "the radiance cache's training paths per pixel of every second row and column "
-                  "(default 8: an eighth of a 16-spp frame's paths, but full ones)")
+                  "(default 16: a quarter of a 16-spp frame's paths, but full ones)")
       ->check(CLI::Range(1, 256));
   cmd->add_option("--denoiser", a->denoiser,
                   "which denoiser --denoise runs: atrous (edge-avoiding wavelets guided by the "

@@ -159,7 +159,7 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--radiance-cache", a->radiance_cache,
                 "radiance cache: a sparse training pass of full paths records, in 25 cm cells, "
                 "what the rough surfaces of the view send on; paths then stop after their "
-                "second rough bounce and take the cell's mean instead of bouncing on. Less "
+                "first rough bounce and take the cell's mean instead of bouncing on. Less "
                 "noise in less time; the cache's own noise is shared by the frame (its mean "
                 "within about 0.5 %); docs/rendering.md");
   cmd->add_option("--radiance-cell", a->radiance_cell_m,

@@ -57,7 +57,7 @@ struct SequenceJob {
   bool lamp_photons = true;
   bool radiance_cache = true;
   double radiance_cell_m = 0.25;  ///< edge of the radiance cache's cells
-  int radiance_train = 8;         ///< its training paths per pixel of every 2nd row and column
+  int radiance_train = 16;        ///< its training paths per pixel of every 2nd row and column
   std::string denoiser = "atrous";    ///< atrous or learned (render/neural_denoise.h)
   /// "key=value,..." over the à-trous filter's defaults (applyDenoiseParams); empty = defaults
   std::string denoise_params;

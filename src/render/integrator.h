@@ -48,11 +48,11 @@ struct RenderOptions {
   /// land within half a metre (a lamp's own shade, back plate or reflector), and every path
   /// vertex also connects to one of them, weighed by MIS. Unbiased; a no-op without such lights.
   bool lamp_photons = false;
-  /// Light past a path's second rough vertex from a per-frame cache (radiance_cache.h): a
+  /// Light past a path's first rough vertex from a per-frame cache (radiance_cache.h): a
   /// sparse training pass of full paths records what rough surfaces send on, cell by cell, and
-  /// the frame's paths stop at the vertex after their second rough scattering when it is rough
+  /// the frame's paths stop at the vertex after their first rough scattering when it is rough
   /// and its cell is trained, taking the cell's mean. The cache's noise is shared by the whole
-  /// frame, so not unbiased for one frame; optional. The paths' first two vertices stay exact.
+  /// frame, so not unbiased for one frame; optional. The paths' first rough vertex stays exact.
   bool radiance_cache = false;
   RadianceCache::Config radiance_cache_config;
   /// Tuned on ../shared/bench against the 1024-spp Cycles reference (sweep of iterations 3-7

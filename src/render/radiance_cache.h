@@ -1,6 +1,6 @@
 #pragma once
 // What a surface sends on, region by region: a per-frame cache of the light leaving rough
-// surfaces, so that a path can stop at its third rough vertex and take the rest of its light
+// surfaces, so that a path can stop at its second rough vertex and take the rest of its light
 // from the cache instead of from more bounces.
 //
 // Indoors much of a wall's light has bounced three times or more: the floor's sunlit patch
@@ -8,7 +8,7 @@
 // each bounce past the second adds noise (apartment 3 at 16 spp: relative noise 0.64 with two
 // bounces, 0.57 with three, 0.65 with eight, for 40 %, 62 % and all of the light). A sparse
 // training pass of full paths through the frame's own view records, at the vertex after each
-// path's second rough scattering, the light it gathered from there on divided by the
+// path's first rough scattering, the light it gathered from there on divided by the
 // throughput that reached it (and by the albedo there, on a Lambertian surface). Records are
 // summed per world-space cell: a cubic grid cell, the axis the surface's side facing the path
 // is closest to, and the kind of value. The frame's paths stop at that same vertex and take
@@ -16,10 +16,12 @@
 // bounces. Training paths record where the frame's paths read, reached the same way, so a
 // cell's mean is the mean over the points in it where those paths land and the blur does not
 // move the expected light; what is left is the cell's noise, which every pixel of the frame
-// shares (a frame's mean moved by about 1 % between seeds at 2 training paths per pixel of
-// every 2nd row and column, within 0.5 % at 8). Not unbiased for one frame, hence optional
-// (RenderOptions::radiance_cache); the light the path gathers at its first two rough vertices
-// (direct light, photons, what their BSDF samples hit) stays exact.
+// shares. Read after the second rough scattering (the first design), a frame's mean moved by
+// about 1 % between seeds at 2 training paths per pixel of every 2nd row and column, within
+// 0.5 % at 8; read after the first, the paths keep less of their own light and 16 are used.
+// Not unbiased for one frame, hence optional (RenderOptions::radiance_cache); the light the
+// path gathers at its first rough vertex (direct light, photons, what its BSDF sample hits)
+// stays exact.
 //
 // Hand-written because it is a table of sums: a hashed grid as in the radiance caches of
 // real-time path tracers (e.g. SHaRC; Binder et al. 2019, "Massively parallel path space
@@ -39,9 +41,9 @@ class RadianceCache {
   struct Config {
     float cell_m = 0.25f;        ///< edge of a grid cell
     uint32_t min_records = 16;   ///< records of a cell before its mean is used
-    /// Training: full paths per pixel of every 2nd row and column (at 8, an eighth of a 16-spp
+    /// Training: full paths per pixel of every 2nd row and column (at 16, a quarter of a 16-spp
     /// frame's paths), and the least number of training paths of a frame.
-    int train_spp = 8;
+    int train_spp = 16;
     int train_min_paths = 1 << 15;
   };
   /// A record more than this many times brighter (luminance) than the mean of its cell's other

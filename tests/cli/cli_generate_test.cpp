@@ -725,7 +725,7 @@ TEST(Generate, TheRadianceCacheIsOnByDefaultSaysSoAndRejectsBadSettings) {
   ASSERT_EQ(on.exit_code, 0) << on.err;
   const std::string meta = readTextFile(seqDir(dir / "on") / "meta.json");
   EXPECT_NE(meta.find("\"radiance_cache\""), std::string::npos) << meta;
-  EXPECT_NE(meta.find("\"train_spp\": 8"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"train_spp\": 16"), std::string::npos) << meta;
   RunResult off = runInterinet(args + "--no-radiance-cache --out " + (dir / "off").string());
   ASSERT_EQ(off.exit_code, 0) << off.err;
   EXPECT_EQ(readTextFile(seqDir(dir / "off") / "meta.json").find("\"radiance_cache\""),

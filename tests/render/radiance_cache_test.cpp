@@ -134,7 +134,7 @@ TEST(RadianceCache, CachedPathsKeepTheMeanWithLessNoiseAndTheSameBytesOnAnyThrea
               plain_mean, cached_mean, plain_err, cached_err);
   EXPECT_NEAR(plain_mean, 1.0, 0.03);
   EXPECT_NEAR(cached_mean, 1.0, 0.03) << "the cache's bias";
-  EXPECT_LT(cached_err, 0.8 * plain_err) << "paths of two bounces here have 0.70x the full paths' error";
+  EXPECT_LT(cached_err, 0.75 * plain_err) << "measured 0.63x";
   const auto [one, two] = test::onOneAndTwoThreads([&] { return render(4, true, 3); });
   EXPECT_EQ(one.data, two.data);
   EXPECT_NE(one.data, render(4, false, 3).data) << "the cache must change the paths";
