@@ -184,16 +184,7 @@ void registerGenerate(CLI::App& app) {
                 "they lit (its shade, back plate or reflector), whose light otherwise reaches "
                 "the room by rare paths (fireflies). Unbiased (MIS); on by default, a no-op "
                 "without point or spot lights (docs/rendering.md)");
-  cmd->add_flag("--radiance-cache,!--no-radiance-cache", a->radiance_cache,
-                "radiance cache: a sparse training pass of full paths records, in 25 cm cells, "
-                "what the rough surfaces of the view send on; paths then stop after their "
-                "first rough bounce and take the cell's mean instead of bouncing on. Less "
-                "noise in less time; the cache's own noise is shared by the frame (its mean "
-                "within about 0.5 %). On by default; --no-radiance-cache bounces on "
-                "(docs/rendering.md)");
-  cmd->add_option("--radiance-cell", a->radiance_cell_m,
-                  "edge of the radiance cache's cells in metres (default 0.25)")
-      ->check(CLI::Range(0.02, 5.0));
+  addRadianceCacheFlags(*cmd, a->radiance_cache, a->radiance_cell_m, true);
   cmd->add_option("--radiance-train", a->radiance_train,
                   "the radiance cache's training paths per pixel of every second row and column "
                   "(default 16: a quarter of a 16-spp frame's paths, but full ones)")

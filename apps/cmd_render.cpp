@@ -156,15 +156,7 @@ void registerRender(CLI::App& app) {
                 "lamp light by way of the surfaces near a lamp it lands on: photons from every "
                 "point and spot light, those within half a metre kept, each path vertex "
                 "connected to one (unbiased; docs/rendering.md)");
-  cmd->add_flag("--radiance-cache", a->radiance_cache,
-                "radiance cache: a sparse training pass of full paths records, in 25 cm cells, "
-                "what the rough surfaces of the view send on; paths then stop after their "
-                "first rough bounce and take the cell's mean instead of bouncing on. Less "
-                "noise in less time; the cache's own noise is shared by the frame (its mean "
-                "within about 0.5 %); docs/rendering.md");
-  cmd->add_option("--radiance-cell", a->radiance_cell_m,
-                  "edge of the radiance cache's cells in metres (default 0.25)")
-      ->check(CLI::Range(0.02, 5.0));
+  addRadianceCacheFlags(*cmd, a->radiance_cache, a->radiance_cell_m, false);
   cmd->add_option("--camera-end", a->camera_end,
                   "camera.json of the pose when the exposure ends (motion blur); the pose of "
                   "--camera is where it starts");

@@ -43,6 +43,21 @@ void addSceneFlags(CLI::App& cmd, SceneSource& x, const std::string& without) {
       ->check(CLI::IsMember({"auto", "on", "off"}));
 }
 
+void addRadianceCacheFlags(CLI::App& cmd, bool& on, double& cell_m, bool on_by_default) {
+  const std::string help =
+      "radiance cache: a sparse training pass of full paths records, in 25 cm cells, what the "
+      "rough surfaces of the view send on; paths then stop after their first rough bounce and "
+      "take the cell's mean instead of bouncing on. Less noise in less time; the cache's own "
+      "noise is shared by the frame (its mean within about 0.5 %). " +
+      std::string(on_by_default ? "On by default; --no-radiance-cache bounces on" : "Off by default") +
+      " (docs/rendering.md)";
+  cmd.add_flag(on_by_default ? "--radiance-cache,!--no-radiance-cache" : "--radiance-cache", on,
+               help);
+  cmd.add_option("--radiance-cell", cell_m,
+                 "edge of the radiance cache's cells in metres (default 0.25)")
+      ->check(CLI::Range(0.02, 5.0));
+}
+
 void addResponseFlags(CLI::App& cmd, ResponseSettings& x) {
   cmd.add_option("--exposure-ev", x.exposure_ev,
                  "exposure compensation of the RGB image in stops (default 0)");

@@ -18,6 +18,8 @@ void addSceneFlags(CLI::App& cmd, SceneSource& x,
                    const std::string& without = "the built-in furnished room");
 /// The camera response's flags: --exposure-ev, --tone, --sensor-noise.
 void addResponseFlags(CLI::App& cmd, ResponseSettings& x);
+/// --radiance-cache (with --no-radiance-cache where it is on by default) and --radiance-cell.
+void addRadianceCacheFlags(CLI::App& cmd, bool& on, double& cell_m, bool on_by_default);
 /// The lens's flags: --lens, --aperture, --focus, --fisheye-fov.
 void addLensFlags(CLI::App& cmd, LensSettings& x);
 /// The event camera's flags: --event-width, --event-height, --event-spp, --contrast, ...

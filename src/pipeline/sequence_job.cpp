@@ -318,7 +318,7 @@ nlohmann::json provenance(const SequenceJob& a, const Scene& scene, const Render
         "(render/path_tracer.cpp, Photons)";
   if (opt.radiance_cache)
     m["render"]["radiance_cache"] = {
-        {"what", "light past the second rough vertex from a per-frame cache of what Lambertian "
+        {"what", "light past the first rough bounce from a per-frame cache of what rough "
                  "surfaces send on (render/radiance_cache.h)"},
         {"cell_m", opt.radiance_cache_config.cell_m},
         {"train_spp", opt.radiance_cache_config.train_spp},

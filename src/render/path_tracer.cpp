@@ -267,8 +267,8 @@ struct LightCaching {
 };
 
 /// The radiance cache's training pass: every kRadianceTrainStride-th pixel in each direction,
-/// RadianceCache::Config::train_spp full paths each (at least train_min_paths in all), from a
-/// seed of their own; their first Lambertian vertices record what they sent on.
+/// RadianceCache::Config::train_spp full paths each (at least train_min_paths in all); each
+/// records at the vertex where the frame's paths read the cache.
 constexpr int kRadianceTrainStride = 2;
 constexpr uint64_t kRadianceSeedSalt = 0xbb67ae8584caa73bull;
 /// A path reads the cache at the vertex after its first rough scattering (its second but for
@@ -276,7 +276,6 @@ constexpr uint64_t kRadianceSeedSalt = 0xbb67ae8584caa73bull;
 /// apartment 3's default sequence 0.0372 / 0.0326 / 0.0352 flat error in 95 s; after the
 /// first, with 16 training paths, 0.0335 / 0.0304 / 0.0324 in 74 s (docs/rendering.md).
 constexpr int kReadAtRough = 1;
-constexpr int kRecordedVertices = 1;
 
 /// The light cache's training pass: every kCacheTrainStride-th pixel in each direction, at
 /// least kCacheTrainSpp paths each and at least kCacheTrainPaths in all (a small image would
@@ -336,91 +335,76 @@ class PathTracer final : public Integrator {
   }
 
  private:
-  /// The light cache of this frame, from a sparse training pass of paths through the frame's
-  /// own view: what each light's shadow rays from the visible surfaces, and from the surfaces
-  /// their paths reach, let through. The static pose is used (motion blur or rolling shutter
-  /// only move where the cache learns, never what the frame's estimate converges to).
-  std::unique_ptr<LightCache> trainLightCache(const RenderContext& ctx, float pixel_spread) const {
-    auto cache = std::make_unique<LightCache>();
+  /// The camera paths of a training pass through the frame's own view, at its static pose
+  /// (motion blur or rolling shutter only move where a cache learns, never what the frame's
+  /// estimate converges to): every `stride`-th pixel in each direction, `min_spp` paths each
+  /// and at least `min_paths` in all (a small image would leave most cells untrained), from
+  /// `seed`, so the frame's own samples stay independent of them. Rows go to parallel tasks;
+  /// each task calls `per_task(trace)` once, and `trace(caching)` traces the task's paths with
+  /// the helpers the task set up (a recorder of its own, merged when trace returns).
+  template <class PerTask>
+  void traceTrainingPaths(const RenderContext& ctx, float pixel_spread, int stride, int min_spp,
+                          int min_paths, uint64_t seed, PerTask per_task) const {
     const CameraIntrinsics& K = ctx.lens.K;
-    const uint64_t seed = ctx.options.seed ^ kCacheSeedSalt;
     const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
     const Vec3f origin = ctx.T_world_camera.t.cast<float>();
-    const LightCaching training{nullptr, cache.get()};
-    const int rows = (K.height + kCacheTrainStride - 1) / kCacheTrainStride;
-    const int columns = (K.width + kCacheTrainStride - 1) / kCacheTrainStride;
-    const int spp =
-        std::max(kCacheTrainSpp, (kCacheTrainPaths + rows * columns - 1) / (rows * columns));
+    const int rows = (K.height + stride - 1) / stride;
+    const int columns = (K.width + stride - 1) / stride;
+    const int spp = std::max(min_spp, (min_paths + rows * columns - 1) / (rows * columns));
     tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
       uint64_t rays = 0;
       uint32_t hashes[PixelSampler::kMaxPairs];
-      for (int row = r.begin(); row < r.end(); ++row) {
-        const int y = row * kCacheTrainStride;
-        for (int x = 0; x < K.width; x += kCacheTrainStride) {
-          const auto pixel = static_cast<uint32_t>(y * K.width + x);
-          PixelSampler::pairHashes(seed, ctx.frame_index, pixel, hashes);
-          for (int s = 0; s < spp; ++s) {
-            PixelSampler smp(seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
-                             static_cast<uint32_t>(spp), hashes);
-            const Eigen::Vector2f j = smp.get2D();
-            CameraRay cr;
-            if (!generateRay(ctx.lens, x + j.x(), y + j.y(), kLensCentre, cr)) continue;
-            const Ray ray{R * cr.origin.cast<float>() + origin,
-                          (R * cr.dir.cast<float>()).normalized(), 0.f};
-            Vec3f le;
-            radiance(ctx, ray, pixel_spread, smp, le, nullptr, rays, nullptr, training);
+      auto trace = [&](const LightCaching& caching) {
+        for (int row = r.begin(); row < r.end(); ++row) {
+          const int y = row * stride;
+          for (int x = 0; x < K.width; x += stride) {
+            const auto pixel = static_cast<uint32_t>(y * K.width + x);
+            PixelSampler::pairHashes(seed, ctx.frame_index, pixel, hashes);
+            for (int s = 0; s < spp; ++s) {
+              PixelSampler smp(seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
+                               static_cast<uint32_t>(spp), hashes);
+              const Eigen::Vector2f j = smp.get2D();
+              CameraRay cr;
+              if (!generateRay(ctx.lens, x + j.x(), y + j.y(), kLensCentre, cr)) continue;
+              const Ray ray{R * cr.origin.cast<float>() + origin,
+                            (R * cr.dir.cast<float>()).normalized(), 0.f};
+              Vec3f le;
+              radiance(ctx, ray, pixel_spread, smp, le, nullptr, rays, nullptr, caching);
+            }
           }
         }
-      }
+      };
+      per_task(trace);
       if (ctx.stats) ctx.stats->rays += rays;
     });
+  }
+
+  /// The light cache of this frame: what each light's shadow rays from the visible surfaces,
+  /// and from the surfaces their paths reach, let through.
+  std::unique_ptr<LightCache> trainLightCache(const RenderContext& ctx, float pixel_spread) const {
+    auto cache = std::make_unique<LightCache>();
+    traceTrainingPaths(ctx, pixel_spread, kCacheTrainStride, kCacheTrainSpp, kCacheTrainPaths,
+                       ctx.options.seed ^ kCacheSeedSalt,
+                       [&](auto& trace) { trace(LightCaching{nullptr, cache.get()}); });
     cache->build();
     return cache;
   }
 
-  /// The radiance cache of this frame (radiance_cache.h), from a sparse training pass of full
-  /// paths through its own view that pick lights and photons as the frame's do (`cache`,
-  /// `photons`), so what a cell records is what the frame's paths would gather past it. The
-  /// static pose is used, as for the light cache.
+  /// The radiance cache of this frame (radiance_cache.h), from training paths that pick lights
+  /// and photons as the frame's do (`cache`, `photons`), so what a cell records is what the
+  /// frame's paths would gather past it.
   std::unique_ptr<RadianceCache> trainRadianceCache(const RenderContext& ctx, float pixel_spread,
                                                     const LightCache* cache,
                                                     const Photons* photons) const {
-    auto out = std::make_unique<RadianceCache>(ctx.options.radiance_cache_config);
-    const CameraIntrinsics& K = ctx.lens.K;
-    const uint64_t seed = ctx.options.seed ^ kRadianceSeedSalt;
-    const Eigen::Matrix3f R = ctx.T_world_camera.rotation().cast<float>();
-    const Vec3f origin = ctx.T_world_camera.t.cast<float>();
-    const int rows = (K.height + kRadianceTrainStride - 1) / kRadianceTrainStride;
-    const int columns = (K.width + kRadianceTrainStride - 1) / kRadianceTrainStride;
     const RadianceCache::Config& config = ctx.options.radiance_cache_config;
-    const int spp = std::max(config.train_spp,
-                             (config.train_min_paths + rows * columns - 1) / (rows * columns));
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
-      uint64_t rays = 0;
-      uint32_t hashes[PixelSampler::kMaxPairs];
-      RadianceCache::Recorder recorder(*out);
-      const LightCaching training{cache, nullptr, photons, nullptr, &recorder};
-      for (int row = r.begin(); row < r.end(); ++row) {
-        const int y = row * kRadianceTrainStride;
-        for (int x = 0; x < K.width; x += kRadianceTrainStride) {
-          const auto pixel = static_cast<uint32_t>(y * K.width + x);
-          PixelSampler::pairHashes(seed, ctx.frame_index, pixel, hashes);
-          for (int s = 0; s < spp; ++s) {
-            PixelSampler smp(seed, ctx.frame_index, pixel, static_cast<uint32_t>(s),
-                             static_cast<uint32_t>(spp), hashes);
-            const Eigen::Vector2f j = smp.get2D();
-            CameraRay cr;
-            if (!generateRay(ctx.lens, x + j.x(), y + j.y(), kLensCentre, cr)) continue;
-            const Ray ray{R * cr.origin.cast<float>() + origin,
-                          (R * cr.dir.cast<float>()).normalized(), 0.f};
-            Vec3f le;
-            radiance(ctx, ray, pixel_spread, smp, le, nullptr, rays, nullptr, training);
-          }
-        }
-      }
-      out->merge(recorder);
-      if (ctx.stats) ctx.stats->rays += rays;
-    });
+    auto out = std::make_unique<RadianceCache>(config);
+    traceTrainingPaths(ctx, pixel_spread, kRadianceTrainStride, config.train_spp,
+                       config.train_min_paths, ctx.options.seed ^ kRadianceSeedSalt,
+                       [&](auto& trace) {
+                         RadianceCache::Recorder recorder(*out);
+                         trace(LightCaching{cache, nullptr, photons, nullptr, &recorder});
+                         out->merge(recorder);
+                       });
     out->build();
     return out;
   }
@@ -993,8 +977,7 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     Vec3f p, n, factor, L;
     RadianceCache::Kind kind;
   };
-  Recorded recorded[kRecordedVertices];
-  int n_recorded = 0;
+  std::optional<Recorded> recorded;
   for (int bounce = 0, vertex = 0;; ++bounce, ++vertex) {
     const bool from_camera = vertex == 0;  // the camera's own ray (not one through a pane)
     RTCRayHit rh;
@@ -1071,8 +1054,8 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
           L += throughput.cwiseProduct(factor).cwiseProduct(*sent);
           break;
         }
-      } else if (n_recorded < kRecordedVertices) {
-        recorded[n_recorded++] = Recorded{p, n_face, throughput.cwiseProduct(factor), L, kind};
+      } else if (!recorded) {
+        recorded = Recorded{p, n_face, throughput.cwiseProduct(factor), L, kind};
       }
     }
     Frame3 frame{Vec3f::UnitX(), Vec3f::UnitY(), Vec3f::UnitZ()};  // set below unless Lambertian
@@ -1344,12 +1327,11 @@ Vec3f PathTracer::radiance(const RenderContext& ctx, Ray ray, float pixel_spread
     }
     ray = Ray{offset(wi), wi, ray.time};
   }
-  for (int i = 0; i < n_recorded; ++i) {
-    const Recorded& r = recorded[i];
+  if (recorded) {
     Vec3f sent = Vec3f::Zero();
     for (int c = 0; c < 3; ++c)
-      if (r.factor[c] > 0.f) sent[c] = (L[c] - r.L[c]) / r.factor[c];
-    caching.record->record(r.p, r.n, r.kind, sent);
+      if (recorded->factor[c] > 0.f) sent[c] = (L[c] - recorded->L[c]) / recorded->factor[c];
+    caching.record->record(recorded->p, recorded->n, recorded->kind, sent);
   }
   if (first_surface) first_surface->diffuse = diffuse + share.cwiseProduct(L - L_at_first);
   if (through_pane) seen_emission = L - L_before_pane;

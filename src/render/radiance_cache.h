@@ -74,7 +74,6 @@ class RadianceCache {
     /// on, whose side facing the path has normal n.
     void record(const Eigen::Vector3f& p, const Eigen::Vector3f& n, Kind kind,
                 const Eigen::Vector3f& value);
-    size_t records() const { return records_; }
 
    private:
     friend class RadianceCache;

@@ -1,6 +1,6 @@
 #pragma once
-// Checks shared by the estimator tests (light cache, sun photons): an image against a
-// reference, and the same render on 1 and 2 threads.
+// Checks shared by the estimator tests (light cache, radiance cache, sun photons): an image
+// against a reference, the same render on 1 and 2 threads, and a closed grey room to render.
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include "core/image.h"
 #include "render/renderer.h"
+#include "scene/primitives.h"
 
 namespace inet::test {
 
@@ -38,6 +39,25 @@ inline ImageF renderSmallRgb(const Renderer& r, const Pose& pose, RenderOptions 
   Frame f;
   r.render(CameraIntrinsics::centred(48, 36, 40), pose, options, 0, f);
   return f.rgb;
+}
+
+/// A closed room 4 x 3 x 2.5 m (x in [-2, 2], y in [-1.5, 1.5], z in [0, 2.5]) of one grey
+/// plaster of the given albedo, its faces turned inward; no lights.
+inline Scene closedGreyRoom(float albedo) {
+  Scene s;
+  Mesh box = makePrimitive("box", {}, "test", "box");
+  for (Tri& t : box.triangles) std::swap(t[1], t[2]);
+  box.source.kind = MeshSource::Kind::Inline;
+  box.id = "inward_box";
+  s.meshes = {box};
+  Material m;
+  m.id = "plaster";
+  m.albedo = Vec3f::Constant(albedo);
+  s.materials = {m};
+  s.objects = {Object::make(
+      "room", 0, 0,
+      (Eigen::Translation3d(0, 0, 1.25) * Eigen::Scaling(Vec3(4, 3, 2.5))).matrix(), 1, 1)};
+  return s;
 }
 
 /// render() run with at most 1 and at most 2 threads.

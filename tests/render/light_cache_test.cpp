@@ -134,19 +134,7 @@ TEST(LightCache, CachedPicksShiftToWhatGetsThroughWithConsistentPdfs) {
 // A closed grey room 4 x 3 x 2.5 m with a point lamp inside and a bright sun above the roof:
 // the plain pick spends most shadow rays on the sun, which never gets in.
 TEST(LightCache, CachedPicksKeepTheMeanWithLessNoiseAndTheSameBytesOnAnyThreadCount) {
-  Scene s;
-  Mesh box = makePrimitive("box", {}, "test", "box");
-  for (Tri& t : box.triangles) std::swap(t[1], t[2]);
-  box.source.kind = MeshSource::Kind::Inline;
-  box.id = "inward_box";
-  s.meshes = {box};
-  Material m;
-  m.id = "plaster";
-  m.albedo = Vec3f::Constant(0.6f);
-  s.materials = {m};
-  s.objects = {Object::make(
-      "room", 0, 0,
-      (Eigen::Translation3d(0, 0, 1.25) * Eigen::Scaling(Vec3(4, 3, 2.5))).matrix(), 1, 1)};
+  Scene s = test::closedGreyRoom(0.6f);
   Light lamp, sun;
   lamp.name = "lamp";
   lamp.type = LightType::Point;

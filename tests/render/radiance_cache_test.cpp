@@ -101,19 +101,7 @@ TEST(RadianceCache, ALoneBrightRecordIsLeftOut) {
 // A closed grey room 4 x 3 x 2.5 m (albedo 0.7: much of its light has bounced more than twice)
 // lit by a point lamp.
 TEST(RadianceCache, CachedPathsKeepTheMeanWithLessNoiseAndTheSameBytesOnAnyThreadCount) {
-  Scene s;
-  Mesh box = makePrimitive("box", {}, "test", "box");
-  for (Tri& t : box.triangles) std::swap(t[1], t[2]);
-  box.source.kind = MeshSource::Kind::Inline;
-  box.id = "inward_box";
-  s.meshes = {box};
-  Material m;
-  m.id = "plaster";
-  m.albedo = Vec3f::Constant(0.7f);
-  s.materials = {m};
-  s.objects = {Object::make(
-      "room", 0, 0,
-      (Eigen::Translation3d(0, 0, 1.25) * Eigen::Scaling(Vec3(4, 3, 2.5))).matrix(), 1, 1)};
+  Scene s = test::closedGreyRoom(0.7f);
   Light lamp;
   lamp.name = "lamp";
   lamp.type = LightType::Point;
